@@ -1,0 +1,42 @@
+#pragma once
+// The commands, run on an options struct with the streams passed in, so the
+// whole program can be run in-process by the tests.
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "keyrot/convert.hpp"
+#include "keyrot/interpolate.hpp"
+#include "keyrot/io.hpp"
+#include "keyrot/layout.hpp"
+
+namespace keyrot {
+
+enum class command { resample, convert };
+
+struct options {
+    command cmd = command::resample;
+    std::vector<std::string> inputs;  ///< "-" is standard input; empty means "-"
+    std::optional<std::string> output;      ///< -o; standard output when absent or "-"
+    std::optional<std::string> output_dir;  ///< --output-dir, for several inputs
+    std::optional<format> from, to;
+    rep representation = rep::axis_angle;
+    std::optional<euler_seq> euler, out_euler;
+    quat_order order = quat_order::wxyz;
+    bool radians = false;
+    std::optional<angle_unit> out_angles;  ///< --out-degrees / --out-radians
+    std::optional<int> precision;
+    bool strict = false;
+    double fps = 24;
+    std::optional<double> key_fps;  ///< defaults to fps
+    method how = method::slerp;
+    path way = path::shortest;
+};
+
+/// Runs one command. Data goes to `out` (unless -o / --output-dir), warnings
+/// and errors to `err` as "keyrot: ..." lines. Returns the exit status:
+/// 0 success, 2 any error. Throws usage_error for a bad combination of flags.
+int run(const options& opts, std::istream& in, std::ostream& out, std::ostream& err);
+
+}  // namespace keyrot

@@ -1,0 +1,69 @@
+#pragma once
+// Conversions between unit quaternions and the other rotation representations.
+// Every angle here is in radians; units are the readers' and writers' business.
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "keyrot/quat.hpp"
+
+namespace keyrot {
+
+/// The rotation representations of the spec, as named on the command line.
+enum class rep { quat, axis_angle, rotvec, euler, matrix, matrix4 };
+
+/// "axis-angle" -> rep::axis_angle; std::nullopt for an unknown name.
+std::optional<rep> parse_rep(std::string_view name);
+std::string_view to_string(rep r) noexcept;
+/// All names parse_rep accepts, for help texts and errors.
+inline constexpr std::array<std::string_view, 6> rep_names = {
+    "axis-angle", "quat", "rotvec", "euler", "matrix", "matrix4"};
+
+enum class angle_unit { degrees, radians };
+std::optional<angle_unit> parse_angle_unit(std::string_view name);
+std::string_view to_string(angle_unit u) noexcept;
+double to_radians(double angle, angle_unit from) noexcept;
+double from_radians(double radians, angle_unit to) noexcept;
+
+/// An Euler sequence in scipy's naming: "XYZ" intrinsic, "zyx" extrinsic.
+struct euler_seq {
+    std::array<int, 3> axes{};  ///< 0 = x, 1 = y, 2 = z, in the order written
+    bool intrinsic = false;
+    std::string name;
+};
+/// "ZYX" -> intrinsic z, y, x. std::nullopt unless three letters from xyz,
+/// all the same case, no two consecutive letters equal.
+std::optional<euler_seq> parse_euler_seq(std::string_view name);
+
+struct axis_angle {
+    vec3 axis{1, 0, 0};  ///< unit
+    double angle = 0;    ///< radians
+};
+
+/// Precondition: axis non-zero and finite (it need not be unit).
+/// from_axis_angle({0, 0, 2}, pi/2) = (cos 45deg, 0, 0, sin 45deg).
+quat from_axis_angle(vec3 axis, double angle) noexcept;
+/// Rotation vector = unit axis * angle; the zero vector is the identity.
+quat from_rotvec(vec3 rotvec) noexcept;
+/// Angles in the order of the sequence. from_euler({a, b, c}, "XYZ") = Rx(a) Ry(b) Rz(c).
+quat from_euler(std::array<double, 3> angles, const euler_seq& seq) noexcept;
+/// Precondition: m is a rotation matrix to within the reader's tolerance.
+/// Picks the best-conditioned of the four Shepperd branches, as scipy does.
+quat from_matrix(const mat3& m) noexcept;
+
+/// Angle in [0, pi]. The identity gives axis (1, 0, 0), angle 0. At exactly
+/// 180 degrees (w = 0) q and -q are both valid; the axis is chosen with its
+/// first non-zero component positive, so the answer does not depend on sign.
+axis_angle to_axis_angle(quat q) noexcept;
+vec3 to_rotvec(quat q) noexcept;
+
+struct euler_angles {
+    std::array<double, 3> angles{};  ///< scipy's canonical ranges
+    bool gimbal_lock = false;        ///< third angle was set to 0
+};
+/// Direct quaternion-to-Euler (Bernardes & Viollet 2022), as scipy >= 1.11.
+euler_angles to_euler(quat q, const euler_seq& seq) noexcept;
+mat3 to_matrix(quat q) noexcept;
+
+}  // namespace keyrot

@@ -1,0 +1,46 @@
+#pragma once
+// keyrot's exceptions. All are caught once, at the top, and printed as one
+// line "keyrot: <what>" with exit status 2.
+#include <stdexcept>
+#include <string>
+
+namespace keyrot {
+
+struct error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+/// A bad command line.
+struct usage_error : error {
+    using error::error;
+};
+
+/// Bad input data. `where` names the source and the line or key:
+/// "walk.csv:14" or "walk.json: tracks.hip.keys[3]".
+struct input_error : error {
+    input_error(const std::string& where, const std::string& message)
+        : error(where + ": " + message) {}
+};
+
+}  // namespace keyrot
+
+#include <ostream>
+#include <set>
+
+namespace keyrot {
+
+/// Warnings for one input source, each kind printed at most once
+/// ("one warning per file") as "keyrot: warning: <source>: <message>".
+class warnings {
+public:
+    warnings(std::ostream& err, std::string source) : err_(err), source_(std::move(source)) {}
+    void once(const std::string& kind, const std::string& message);
+    const std::string& source() const noexcept { return source_; }
+
+private:
+    std::ostream& err_;
+    std::string source_;
+    std::set<std::string> said_;
+};
+
+}  // namespace keyrot

@@ -1,0 +1,77 @@
+#pragma once
+// The file formats and what is common to their readers and writers: the
+// document a reader returns and the row-by-row writer interface.
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "keyrot/interpolate.hpp"
+#include "keyrot/layout.hpp"
+#include "keyrot/resample.hpp"
+#include "keyrot/track.hpp"
+
+namespace keyrot {
+
+enum class format { csv, json, ndjson };
+std::optional<format> parse_format(std::string_view name);
+std::string_view to_string(format f) noexcept;
+/// ".csv" -> csv, ".json" -> json, ".ndjson" / ".jsonl" -> ndjson.
+std::optional<format> format_of_path(std::string_view path);
+/// Guess from the content: '{' or '[' first means JSON, unless the first
+/// line is a whole object and more lines follow (NDJSON); otherwise CSV.
+format sniff_format(std::string_view text);
+
+/// Everything a reader needs besides the text.
+struct read_options {
+    std::string source;      ///< file name for messages, "<stdin>" for stdin
+    key_settings settings;   ///< from the flags; a JSON document may override
+    quat_order order = quat_order::wxyz;
+};
+
+struct raw_document {
+    std::vector<raw_track> tracks;  ///< in order of first appearance
+    bool named = false;             ///< the input had a track column / tracks object
+};
+
+/// Warnings (unknown columns, say) go to `warn`.
+raw_document read_document(std::string_view text, format f, const read_options& opts, warnings& warn);
+
+/// Frame / key time columns of a table.
+enum class time_columns {
+    frame_and_time,  ///< resample: both
+    as_given,        ///< convert: JSON writes each key's own; CSV writes `frame` if all keys have one, else `time`
+    time_only,       ///< slerp: the parameter, under time_name
+};
+
+/// What a writer must know before the first row.
+struct table_info {
+    bool named = false;        ///< write track names
+    bool translation = false;  ///< some track has a translation
+    time_columns times = time_columns::frame_and_time;
+    bool all_frames = false;  ///< as_given: every row has a frame
+    std::string_view time_name = "time";
+    std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
+    std::optional<double> fps;              ///< JSON header fields, when known
+    std::optional<method> how;
+};
+
+/// Writes rows one at a time into `out`. begin_track comes before each
+/// track's rows (also for a single unnamed track); finish closes the document.
+class table_writer {
+public:
+    virtual ~table_writer() = default;
+    virtual void begin_track(const std::string& name, bool has_translation) = 0;
+    virtual void row(const sample& s) = 0;
+    virtual void finish() = 0;
+};
+
+/// A row's rotation values; Euler output warns once about gimbal lock.
+rotation_values row_values(const sample& s, const write_options& opts, warnings& warn);
+
+/// Euler output warns once about gimbal lock through `warn`.
+std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,
+                                          const write_options& opts, warnings& warn);
+
+}  // namespace keyrot

@@ -1,0 +1,66 @@
+#pragma once
+// How rotations are laid out in files, shared by every reader and writer:
+// quaternion order, the CSV columns of each representation, the values
+// written for a rotation, and how numbers are printed.
+#include <array>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "keyrot/convert.hpp"
+#include "keyrot/error.hpp"
+#include "keyrot/quat.hpp"
+
+namespace keyrot {
+
+enum class quat_order { wxyz, xyzw };
+std::optional<quat_order> parse_quat_order(std::string_view name);
+std::string_view to_string(quat_order o) noexcept;
+
+/// CSV columns of a representation's rotation, in output order:
+/// rotation_columns(rep::axis_angle, ...) = {"ax", "ay", "az", "angle"}.
+/// For rep::matrix4 these are m00..m33 (translation included).
+std::span<const std::string_view> rotation_columns(rep r, quat_order order) noexcept;
+inline constexpr std::array<std::string_view, 3> translation_columns = {"tx", "ty", "tz"};
+
+/// Reorder 4 values between file order and (w, x, y, z).
+std::array<double, 4> from_quat_order(std::array<double, 4> v, quat_order order) noexcept;
+
+struct write_options {
+    rep representation = rep::axis_angle;
+    std::optional<euler_seq> euler;  ///< required for rep::euler
+    angle_unit angles = angle_unit::degrees;
+    quat_order order = quat_order::wxyz;
+    std::optional<int> precision;  ///< digits after the point; none = shortest round trip
+};
+
+/// A rotation's values in column order, angles in the output unit.
+struct rotation_values {
+    std::array<double, 16> v{};
+    std::size_t size = 0;
+    bool gimbal_lock = false;
+};
+/// `translation` is used by rep::matrix4 only (zero when absent).
+rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts);
+
+/// Appends v in the shortest form that reads back to the same double, or
+/// rounded to `precision` decimals without trailing zeros. Never "-0".
+void append_number(std::string& out, double v, std::optional<int> precision);
+
+/// The gimbal-lock warning, once per output.
+void warn_gimbal_lock(warnings& warn, const euler_seq& seq);
+
+}  // namespace keyrot
+
+namespace keyrot {
+
+/// A number as written in CSV cells and on the command line: optional
+/// surrounding spaces, an optional '+', then what std::from_chars reads.
+/// std::nullopt unless the whole text is one finite double.
+std::optional<double> parse_number(std::string_view text);
+
+/// True if `text` is well-formed UTF-8 (no overlong forms, no surrogates).
+bool is_valid_utf8(std::string_view text) noexcept;
+
+}  // namespace keyrot

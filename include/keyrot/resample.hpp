@@ -1,0 +1,37 @@
+#pragma once
+// The frame grid: every frame k with k/fps inside a track's key range.
+#include <functional>
+#include <optional>
+
+#include "keyrot/interpolate.hpp"
+#include "keyrot/track.hpp"
+
+namespace keyrot {
+
+/// One output row: a resampled frame (frame = k) or a converted key.
+struct sample {
+    double time = 0;
+    std::optional<double> frame;
+    quat rotation;
+    std::optional<vec3> translation;
+};
+
+struct resample_options {
+    double fps = 24;
+    method how = method::slerp;
+    path way = path::shortest;
+};
+
+/// Calls emit for each frame k (ascending) with first key time <= k/fps <=
+/// last key time, to within tol::grid_frames of a frame. time = k / fps is
+/// computed afresh for each frame, never accumulated. At a key time the
+/// rotation is that key's; quaternion signs are continuous from frame to
+/// frame, starting from the first key's sign.
+/// Throws input_error when the range holds more than max_frames frames.
+void resample(const track& t, const resample_options& opts, const std::string& source,
+              const std::function<void(const sample&)>& emit);
+
+/// Upper bound on frames per track, so a typo in a time cannot ask for 1e300 frames.
+inline constexpr double max_frames = 1e10;
+
+}  // namespace keyrot

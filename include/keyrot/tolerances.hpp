@@ -1,0 +1,18 @@
+#pragma once
+// Every tolerance keyrot uses, in one place.
+namespace keyrot::tol {
+
+/// |norm - 1| above which a key's quaternion gets the renormalisation warning.
+inline constexpr double unit_norm = 1e-3;
+/// max |R R^T - I| above which a matrix is not a rotation.
+inline constexpr double orthonormal = 1e-3;
+/// Output frames within this many frames of the key range are on the grid.
+inline constexpr double grid_frames = 1e-9;
+/// Middle Euler angle (radians) this close to 0 or pi counts as gimbal lock.
+/// Setting the third angle to 0 there moves the rotation by at most about
+/// this much, so it is kept at the size of a rounding error.
+inline constexpr double gimbal_lock = 4e-16;
+/// |dt| in seconds under which compare matches rows by time.
+inline constexpr double match_time = 1e-6;
+
+}  // namespace keyrot::tol

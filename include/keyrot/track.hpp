@@ -1,0 +1,63 @@
+#pragma once
+// Keys and tracks: what the readers produce (raw_key, as written in the file)
+// and what the rest of keyrot works on (key, with a unit quaternion).
+// make_track is the one place where raw values become rotations, so every
+// input format is validated the same way.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "keyrot/convert.hpp"
+#include "keyrot/error.hpp"
+#include "keyrot/quat.hpp"
+
+namespace keyrot {
+
+/// One key exactly as read: numbers in the file's units, not yet checked
+/// beyond being finite. Quaternion values are in (w, x, y, z) order.
+struct raw_key {
+    std::string where;  ///< "walk.csv:14" or "walk.json: keys[3]", for errors
+    std::optional<double> time, frame;
+    rep kind = rep::quat;
+    std::array<double, 16> values{};  ///< as many as `kind` needs
+    std::optional<vec3> translation;
+};
+
+/// Settings that describe a document (flags, overridden by its own fields).
+struct key_settings {
+    angle_unit angles = angle_unit::degrees;
+    std::optional<euler_seq> euler;
+    double key_fps = 24;
+    bool strict = false;
+};
+
+struct raw_track {
+    std::string name;  ///< empty for a file without tracks
+    key_settings settings;
+    std::vector<raw_key> keys;
+};
+
+struct key {
+    double time = 0;              ///< seconds
+    std::optional<double> frame;  ///< as given, when keyed by frame
+    quat rotation;                ///< unit
+    std::optional<vec3> translation;
+    rep given_as = rep::quat;
+    /// The Euler angles as given (radians), for --method euler.
+    std::optional<std::array<double, 3>> euler;
+    bool renormalised = false;  ///< input norm differed from 1 by > tol::unit_norm
+};
+
+struct track {
+    std::string name;
+    std::optional<euler_seq> euler;  ///< the sequence in force for this track
+    std::vector<key> keys;
+};
+
+/// Converts and validates: rotations to unit quaternions, frames to times,
+/// times strictly increasing, at least one key. Throws input_error naming
+/// the key; warns once per source about renormalised quaternions.
+track make_track(const raw_track& raw, warnings& warn);
+
+}  // namespace keyrot

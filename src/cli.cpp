@@ -1,0 +1,121 @@
+#include "keyrot/cli.hpp"
+
+#include <fmt/format.h>
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <ostream>
+
+namespace keyrot {
+namespace {
+
+/// The flag values as CLI11 fills them, before they become typed options.
+struct raw_flags {
+    std::string from, to, rep = "axis-angle", euler, out_euler, quat_order = "wxyz", method = "slerp",
+                        path = "shortest";
+    bool out_degrees = false, out_radians = false;
+    int precision = -1;
+    double key_fps = 0;
+};
+
+template <std::size_t N>
+std::vector<std::string> names(const std::array<std::string_view, N>& list) {
+    return {list.begin(), list.end()};
+}
+
+void add_common(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
+    sub.add_option("-o,--output", o.output, "output file (default: standard output)");
+    sub.add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
+    sub.add_option("--from", f.from, "input format (default: by extension, else sniffed)")
+        ->check(CLI::IsMember({"csv", "json", "ndjson"}));
+    sub.add_option("--to", f.to, "output format (default: extension of -o, else the input format)")
+        ->check(CLI::IsMember({"csv", "json", "ndjson"}));
+    sub.add_option("--rep", f.rep, "output representation")->check(CLI::IsMember(names(rep_names)));
+    sub.add_option("--euler", f.euler, "Euler sequence of the input, e.g. ZYX (intrinsic) or xyz (extrinsic)");
+    sub.add_option("--out-euler", f.out_euler, "Euler sequence of the output (default: --euler)");
+    sub.add_option("--quat-order", f.quat_order, "order of quaternion arrays and output columns")
+        ->check(CLI::IsMember({"wxyz", "xyzw"}));
+    sub.add_flag("--radians", o.radians, "angles in radians, input and output (default: degrees)");
+    auto* deg = sub.add_flag("--out-degrees", f.out_degrees, "output angles in degrees");
+    auto* rad = sub.add_flag("--out-radians", f.out_radians, "output angles in radians");
+    deg->excludes(rad);
+    sub.add_option("--precision", f.precision, "digits after the decimal point (default: shortest round trip)");
+    sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
+}
+
+void add_resample_flags(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("--fps", o.fps, "output frame rate (default 24)");
+    sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps)");
+    sub.add_option("--method", f.method, "interpolation method")->check(CLI::IsMember(names(method_names)));
+    sub.add_option("--path", f.path, "shortest: consecutive keys in one hemisphere; direct: signs as given")
+        ->check(CLI::IsMember(names(path_names)));
+}
+
+euler_seq euler_flag(const std::string& flag, const std::string& value) {
+    if (auto seq = parse_euler_seq(value)) return *seq;
+    throw usage_error(fmt::format("{}: expected three axes like ZYX (intrinsic) or xyz (extrinsic), no two "
+                                  "consecutive ones equal, got '{}'",
+                                  flag, value));
+}
+
+void check_rate(const char* flag, double v) {
+    if (!(std::isfinite(v) && v > 0)) throw usage_error(fmt::format("{}: expected a positive frame rate, got {}", flag, v));
+}
+
+/// Turns the raw flag values into typed options, checking what CLI11 cannot.
+void finish(options& o, const raw_flags& f) {
+    if (!f.from.empty()) o.from = parse_format(f.from);
+    if (!f.to.empty()) o.to = parse_format(f.to);
+    o.representation = *parse_rep(f.rep);
+    if (!f.euler.empty()) o.euler = euler_flag("--euler", f.euler);
+    if (!f.out_euler.empty()) o.out_euler = euler_flag("--out-euler", f.out_euler);
+    o.order = *parse_quat_order(f.quat_order);
+    if (f.out_degrees) o.out_angles = angle_unit::degrees;
+    if (f.out_radians) o.out_angles = angle_unit::radians;
+    if (f.precision != -1) {
+        if (f.precision < 0 || f.precision > 17)
+            throw usage_error(fmt::format("--precision: expected 0 to 17 digits, got {}", f.precision));
+        o.precision = f.precision;
+    }
+    o.how = *parse_method(f.method);
+    o.way = *parse_path(f.path);
+    check_rate("--fps", o.fps);
+    if (f.key_fps != 0) {
+        check_rate("--key-fps", f.key_fps);
+        o.key_fps = f.key_fps;
+    }
+}
+
+}  // namespace
+
+std::optional<options> parse_command_line(int argc, const char* const* argv, std::ostream& out) {
+    CLI::App app{"keyrot: keyframe rotation interpolator"};
+    app.set_version_flag("--version", version);
+    app.require_subcommand(1);
+    options o;
+    raw_flags f;
+    CLI::App* resample = app.add_subcommand("resample", "resample keyframes on the frame grid");
+    CLI::App* convert = app.add_subcommand("convert", "rewrite keys in another representation, no resampling");
+    for (CLI::App* sub : {resample, convert}) add_common(*sub, o, f);
+    add_resample_flags(*resample, o, f);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp&) {
+        out << app.help();
+        return std::nullopt;
+    } catch (const CLI::CallForAllHelp&) {
+        out << app.help("", CLI::AppFormatMode::All);
+        return std::nullopt;
+    } catch (const CLI::CallForVersion&) {
+        out << "keyrot " << version << '\n';
+        return std::nullopt;
+    } catch (const CLI::ParseError& e) {
+        throw usage_error(fmt::format("{} (see keyrot --help)", e.what()));
+    }
+    o.cmd = resample->parsed() ? command::resample : command::convert;
+    finish(o, f);
+    return o;
+}
+
+}  // namespace keyrot

@@ -1,0 +1,207 @@
+#include "keyrot/convert.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "keyrot/tolerances.hpp"
+
+namespace keyrot {
+
+std::optional<rep> parse_rep(std::string_view name) {
+    static constexpr std::array<rep, 6> values = {rep::axis_angle, rep::quat,   rep::rotvec,
+                                                  rep::euler,      rep::matrix, rep::matrix4};
+    for (std::size_t i = 0; i < rep_names.size(); ++i)
+        if (rep_names[i] == name) return values[i];
+    return std::nullopt;
+}
+
+std::string_view to_string(rep r) noexcept {
+    switch (r) {
+        case rep::quat: return "quat";
+        case rep::axis_angle: return "axis-angle";
+        case rep::rotvec: return "rotvec";
+        case rep::euler: return "euler";
+        case rep::matrix: return "matrix";
+        case rep::matrix4: return "matrix4";
+    }
+    return "?";
+}
+
+std::optional<angle_unit> parse_angle_unit(std::string_view name) {
+    if (name == "degrees") return angle_unit::degrees;
+    if (name == "radians") return angle_unit::radians;
+    return std::nullopt;
+}
+
+std::string_view to_string(angle_unit u) noexcept {
+    return u == angle_unit::degrees ? "degrees" : "radians";
+}
+
+double to_radians(double angle, angle_unit from) noexcept {
+    return from == angle_unit::degrees ? angle * (std::numbers::pi / 180) : angle;
+}
+
+double from_radians(double radians, angle_unit to) noexcept {
+    return to == angle_unit::degrees ? radians * (180 / std::numbers::pi) : radians;
+}
+
+std::optional<euler_seq> parse_euler_seq(std::string_view name) {
+    if (name.size() != 3) return std::nullopt;
+    euler_seq seq;
+    seq.name = std::string(name);
+    const bool upper = name[0] >= 'X' && name[0] <= 'Z';
+    seq.intrinsic = upper;
+    for (std::size_t i = 0; i < 3; ++i) {
+        const char c = name[i];
+        const char base = upper ? 'X' : 'x';
+        if (c < base || c > base + 2) return std::nullopt;
+        seq.axes[i] = c - base;
+        if (i > 0 && seq.axes[i] == seq.axes[i - 1]) return std::nullopt;
+    }
+    return seq;
+}
+
+quat from_axis_angle(vec3 axis, double angle) noexcept {
+    const double half = angle / 2;
+    const double s = std::sin(half) / norm(axis);
+    return {std::cos(half), s * axis.x, s * axis.y, s * axis.z};
+}
+
+quat from_rotvec(vec3 rotvec) noexcept {
+    const double angle = norm(rotvec);
+    if (angle == 0) return {};
+    return from_axis_angle(rotvec, angle);
+}
+
+namespace {
+
+quat elementary(int axis, double angle) noexcept {
+    quat q{std::cos(angle / 2), 0, 0, 0};
+    const double s = std::sin(angle / 2);
+    (axis == 0 ? q.x : axis == 1 ? q.y : q.z) = s;
+    return q;
+}
+
+double component(quat q, int axis) noexcept { return axis == 0 ? q.x : axis == 1 ? q.y : q.z; }
+
+double wrap_pi(double a) noexcept {
+    if (a < -std::numbers::pi) return a + 2 * std::numbers::pi;
+    if (a > std::numbers::pi) return a - 2 * std::numbers::pi;
+    return a;
+}
+
+}  // namespace
+
+quat from_euler(std::array<double, 3> angles, const euler_seq& seq) noexcept {
+    const quat a = elementary(seq.axes[0], angles[0]);
+    const quat b = elementary(seq.axes[1], angles[1]);
+    const quat c = elementary(seq.axes[2], angles[2]);
+    // Intrinsic: each rotation about the already-rotated axes, so the first
+    // one is outermost. Extrinsic: the first one is applied first.
+    return seq.intrinsic ? a * b * c : c * b * a;
+}
+
+quat from_matrix(const mat3& mat) noexcept {
+    const auto& m = mat.m;
+    const double trace = m[0][0] + m[1][1] + m[2][2];
+    int best = 3;  // 0..2: a diagonal element, 3: the trace
+    double largest = trace;
+    for (int i = 0; i < 3; ++i)
+        if (m[i][i] > largest) largest = m[i][i], best = i;
+    std::array<double, 4> v{};  // x, y, z, w
+    if (best == 3) {
+        v = {m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1], 1 + trace};
+    } else {
+        const int i = best, j = (i + 1) % 3, k = (j + 1) % 3;
+        v[static_cast<std::size_t>(i)] = 1 - trace + 2 * m[i][i];
+        v[static_cast<std::size_t>(j)] = m[j][i] + m[i][j];
+        v[static_cast<std::size_t>(k)] = m[k][i] + m[i][k];
+        v[3] = m[k][j] - m[j][k];
+    }
+    return normalized({v[3], v[0], v[1], v[2]});
+}
+
+axis_angle to_axis_angle(quat q) noexcept {
+    if (q.w < 0) q = -q;
+    vec3 v = vector_part(q);
+    const double sin_half = norm(v);
+    if (sin_half == 0) return {};
+    if (q.w == 0) {
+        const double first = v.x != 0 ? v.x : v.y != 0 ? v.y : v.z;
+        if (first < 0) v = -1.0 * v;
+    }
+    return {(1 / sin_half) * v, 2 * std::atan2(sin_half, q.w)};
+}
+
+vec3 to_rotvec(quat q) noexcept {
+    const axis_angle aa = to_axis_angle(q);
+    return aa.angle * aa.axis;
+}
+
+euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
+    // The paper's algorithm is for extrinsic sequences; an intrinsic sequence
+    // is the reversed extrinsic one with the angles reversed.
+    const bool extrinsic = !seq.intrinsic;
+    int i = extrinsic ? seq.axes[0] : seq.axes[2];
+    const int j = seq.axes[1];
+    int k = extrinsic ? seq.axes[2] : seq.axes[0];
+    const bool proper = i == k;
+    if (proper) k = 3 - i - j;
+    const int sign = (i - j) * (j - k) * (k - i) / 2;  // +1 for an even permutation
+
+    double a, b, c, d;
+    if (proper) {
+        a = q.w;
+        b = component(q, i);
+        c = component(q, j);
+        d = component(q, k) * sign;
+    } else {
+        a = q.w - component(q, j);
+        b = component(q, i) + component(q, k) * sign;
+        c = component(q, j) + q.w;
+        d = component(q, k) * sign - component(q, i);
+    }
+
+    euler_angles out;
+    auto& ang = out.angles;
+    const int first = extrinsic ? 0 : 2;
+    const int third = extrinsic ? 2 : 0;
+    const double ab = std::hypot(a, b);
+    const double cd = std::hypot(c, d);
+    // The middle angle's distance from its two singular values, each
+    // computed directly so that tiny distances keep their precision.
+    const double from_zero = 2 * std::atan2(cd, ab);
+    const double from_pi = 2 * std::atan2(ab, cd);
+    ang[1] = from_zero;
+    const double half_sum = std::atan2(b, a);
+    const double half_diff = std::atan2(d, c);
+    if (from_zero <= tol::gimbal_lock) {
+        out.gimbal_lock = true;
+        ang[2] = 0;
+        ang[0] = 2 * half_sum;
+    } else if (from_pi <= tol::gimbal_lock) {
+        out.gimbal_lock = true;
+        ang[2] = 0;
+        ang[0] = 2 * half_diff * (extrinsic ? -1 : 1);
+    } else {
+        ang[static_cast<std::size_t>(first)] = half_sum - half_diff;
+        ang[static_cast<std::size_t>(third)] = half_sum + half_diff;
+    }
+    if (!proper) {
+        ang[static_cast<std::size_t>(third)] *= sign;
+        ang[1] -= std::numbers::pi / 2;
+    }
+    for (double& x : ang) x = wrap_pi(x) + 0.0;  // + 0.0 turns -0 into 0
+    return out;
+}
+
+mat3 to_matrix(quat q) noexcept {
+    const double w = q.w, x = q.x, y = q.y, z = q.z;
+    mat3 r;
+    r.m[0] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)};
+    r.m[1] = {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)};
+    r.m[2] = {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)};
+    return r;
+}
+
+}  // namespace keyrot

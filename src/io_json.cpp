@@ -1,0 +1,389 @@
+#include "keyrot/io_json.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+#include <nlohmann/json.hpp>
+
+namespace keyrot {
+namespace {
+
+using json = nlohmann::json;
+
+/// Deeper nesting than this is refused before parsing, so that a hostile
+/// document cannot exhaust the parser's stack.
+constexpr int max_depth = 64;
+
+std::string type_name(const json& j) { return j.type_name(); }
+
+/// Line (1-based) of a byte offset, for parse errors.
+std::size_t line_of(std::string_view text, std::size_t byte) {
+    byte = std::min(byte, text.size());
+    return 1 + static_cast<std::size_t>(std::count(text.begin(), text.begin() + static_cast<std::ptrdiff_t>(byte), '\n'));
+}
+
+void check_depth(std::string_view text, std::string_view source, std::size_t first_line) {
+    int depth = 0;
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\') ++i;
+            else if (c == '"') in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > max_depth)
+                throw input_error(fmt::format("{}:{}", source, first_line + line_of(text, i) - 1),
+                                  fmt::format("JSON nested deeper than {} levels: expected a keyframe document", max_depth));
+        } else if (c == ']' || c == '}') {
+            --depth;
+        }
+    }
+}
+
+json parse(std::string_view text, std::string_view source, std::size_t first_line) {
+    check_depth(text, source, first_line);
+    try {
+        return json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& e) {
+        std::string what = e.what();
+        // "[json.exception.parse_error.101] parse error at line 1, column 5: ..." -> the part after ": "
+        const auto colon = what.find(": ");
+        if (colon != std::string::npos) what = what.substr(colon + 2);
+        throw input_error(fmt::format("{}:{}", source, first_line + line_of(text, e.byte == 0 ? 0 : e.byte - 1) - 1),
+                          "invalid JSON: " + what);
+    }
+}
+
+/// Reads the fields of one key object.
+class key_reader {
+public:
+    key_reader(const json& obj, std::string where, quat_order order, bool frames_doc)
+        : obj_(obj), where_(std::move(where)), order_(order), frames_doc_(frames_doc) {}
+
+    raw_key read() {
+        if (!obj_.is_object()) fail(fmt::format("expected a key object, got {}", type_name(obj_)));
+        raw_key k;
+        k.where = where_;
+        k.time = optional_number("time");
+        k.frame = optional_number("frame");
+        if (!k.time && !k.frame) fail("expected a 'time' or a 'frame'");
+        if (k.time && k.frame && !frames_doc_) fail("a key has both 'time' and 'frame': expected exactly one");
+
+        int rotations = 0;
+        for (const char* name : {"quat", "axis", "rotvec", "euler", "matrix"}) rotations += obj_.contains(name);
+        if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
+        if (rotations > 1) fail("more than one rotation: expected exactly one of 'quat', 'axis', 'rotvec', 'euler', 'matrix'");
+        if (obj_.contains("angle") && !obj_.contains("axis")) fail("'angle' without 'axis'");
+
+        if (obj_.contains("quat")) {
+            k.kind = rep::quat;
+            const json& q = obj_.at("quat");
+            if (q.is_object()) {
+                const char* names[] = {"w", "x", "y", "z"};
+                for (std::size_t i = 0; i < 4; ++i) {
+                    if (!q.contains(names[i])) fail(fmt::format("'quat' object: missing '{}': expected w x y z", names[i]));
+                    k.values[i] = number(q.at(names[i]), fmt::format("quat.{}", names[i]));
+                }
+            } else {
+                const auto v = numbers(q, "quat", 4);
+                const auto wxyz = from_quat_order({v[0], v[1], v[2], v[3]}, order_);
+                std::copy(wxyz.begin(), wxyz.end(), k.values.begin());
+            }
+        } else if (obj_.contains("axis")) {
+            k.kind = rep::axis_angle;
+            if (!obj_.contains("angle")) fail("'axis' without 'angle'");
+            const auto v = numbers(obj_.at("axis"), "axis", 3);
+            std::copy(v.begin(), v.end(), k.values.begin());
+            k.values[3] = number(obj_.at("angle"), "angle");
+        } else if (obj_.contains("rotvec")) {
+            k.kind = rep::rotvec;
+            const auto v = numbers(obj_.at("rotvec"), "rotvec", 3);
+            std::copy(v.begin(), v.end(), k.values.begin());
+        } else if (obj_.contains("euler")) {
+            k.kind = rep::euler;
+            const auto v = numbers(obj_.at("euler"), "euler", 3);
+            std::copy(v.begin(), v.end(), k.values.begin());
+        } else {
+            read_matrix(k);
+        }
+        if (obj_.contains("translation")) {
+            const auto v = numbers(obj_.at("translation"), "translation", 3);
+            k.translation = vec3{v[0], v[1], v[2]};
+        }
+        return k;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& message) const { throw input_error(where_, message); }
+
+    double number(const json& j, const std::string& field) const {
+        if (!j.is_number())
+            fail(fmt::format("'{}': expected a number, got {}{}", field, type_name(j),
+                             j.is_string() ? fmt::format(" \"{}\"", j.get_ref<const std::string&>().substr(0, 40)) : ""));
+        const double v = j.get<double>();
+        if (!std::isfinite(v)) fail(fmt::format("'{}': expected a finite number, got {}", field, v));
+        return v;
+    }
+
+    std::optional<double> optional_number(const char* field) const {
+        if (!obj_.contains(field)) return std::nullopt;
+        return number(obj_.at(field), field);
+    }
+
+    std::vector<double> numbers(const json& j, const std::string& field, std::size_t n) const {
+        if (!j.is_array() || j.size() != n)
+            fail(fmt::format("'{}': expected an array of {} numbers, got {}", field, n,
+                             j.is_array() ? fmt::format("{} elements", j.size()) : type_name(j)));
+        std::vector<double> out;
+        for (std::size_t i = 0; i < n; ++i) out.push_back(number(j[i], fmt::format("{}[{}]", field, i)));
+        return out;
+    }
+
+    void read_matrix(raw_key& k) const {
+        const json& m = obj_.at("matrix");
+        if (!m.is_array() || (m.size() != 3 && m.size() != 4))
+            fail(fmt::format("'matrix': expected 3 or 4 rows, got {}",
+                             m.is_array() ? fmt::format("{} rows", m.size()) : type_name(m)));
+        const std::size_t n = m.size();
+        k.kind = n == 4 ? rep::matrix4 : rep::matrix;
+        for (std::size_t r = 0; r < n; ++r) {
+            const auto row = numbers(m[r], fmt::format("matrix[{}]", r), n);
+            std::copy(row.begin(), row.end(), k.values.begin() + static_cast<std::ptrdiff_t>(r * n));
+        }
+    }
+
+    const json& obj_;
+    std::string where_;
+    quat_order order_;
+    bool frames_doc_;
+};
+
+/// Applies a document's own fields ("angles", "euler", "quat_order", "fps")
+/// over the settings it inherits.
+void apply_fields(const json& obj, key_settings& s, quat_order& order, const std::string& where) {
+    if (!obj.is_object()) return;
+    auto text = [&](const char* field) -> std::optional<std::string> {
+        if (!obj.contains(field)) return std::nullopt;
+        if (!obj.at(field).is_string())
+            throw input_error(where, fmt::format("'{}': expected a string, got {}", field, type_name(obj.at(field))));
+        return obj.at(field).get<std::string>();
+    };
+    if (auto a = text("angles")) {
+        const auto u = parse_angle_unit(*a);
+        if (!u) throw input_error(where, fmt::format("'angles': expected \"degrees\" or \"radians\", got \"{}\"", *a));
+        s.angles = *u;
+    }
+    if (auto e = text("euler")) {
+        s.euler = parse_euler_seq(*e);
+        if (!s.euler)
+            throw input_error(where, fmt::format("'euler': expected a sequence like \"ZYX\" or \"xyz\", got \"{}\"", *e));
+    }
+    if (auto o = text("quat_order")) {
+        const auto q = parse_quat_order(*o);
+        if (!q) throw input_error(where, fmt::format("'quat_order': expected \"wxyz\" or \"xyzw\", got \"{}\"", *o));
+        order = *q;
+    }
+    if (obj.contains("fps")) {
+        const json& f = obj.at("fps");
+        if (!f.is_number() || !(f.get<double>() > 0) || !std::isfinite(f.get<double>()))
+            throw input_error(where, "'fps': expected a positive number");
+        s.key_fps = f.get<double>();
+    }
+}
+
+std::string join_path(const std::string& prefix, const std::string& item) {
+    return prefix.empty() ? item : prefix + "." + item;
+}
+
+/// A track object ({"keys": [...]}, {"frames": [...]}) or a bare array of keys.
+raw_track read_track(const json& j, std::string name, const std::string& path, key_settings settings,
+                     quat_order order, const read_options& opts) {
+    const std::string where = fmt::format("{}: {}", opts.source, path.empty() ? "document" : path);
+    apply_fields(j, settings, order, where);
+    const json* keys = &j;
+    std::string field;
+    bool frames_doc = false;
+    if (j.is_object()) {
+        const bool has_keys = j.contains("keys"), has_frames = j.contains("frames");
+        if (has_keys == has_frames)
+            throw input_error(where, has_keys ? "both 'keys' and 'frames': expected one"
+                                              : "expected 'keys', 'frames' or 'tracks'");
+        field = has_keys ? "keys" : "frames";
+        frames_doc = has_frames;
+        keys = &j.at(field);
+    }
+    const std::string keys_path = field.empty() ? path : join_path(path, field);
+    if (!keys->is_array())
+        throw input_error(where, fmt::format("'{}': expected an array of keys, got {}", field.empty() ? name : field,
+                                             type_name(*keys)));
+    raw_track t{std::move(name), settings, {}};
+    t.keys.reserve(keys->size());
+    for (std::size_t i = 0; i < keys->size(); ++i)
+        t.keys.push_back(key_reader((*keys)[i], fmt::format("{}: {}[{}]", opts.source, keys_path, i), order, frames_doc).read());
+    return t;
+}
+
+}  // namespace
+
+raw_document read_json(std::string_view text, const read_options& opts, warnings&) {
+    const json j = parse(text, opts.source, 1);
+    raw_document doc;
+    key_settings settings = opts.settings;
+    quat_order order = opts.order;
+    if (j.is_object() && j.contains("tracks")) {
+        const std::string where = fmt::format("{}: document", opts.source);
+        apply_fields(j, settings, order, where);
+        const json& tracks = j.at("tracks");
+        if (!tracks.is_object())
+            throw input_error(where, fmt::format("'tracks': expected an object of named tracks, got {}", type_name(tracks)));
+        if (tracks.empty()) throw input_error(where, "'tracks' is empty: expected at least one track");
+        doc.named = true;
+        for (const auto& [name, value] : tracks.items())
+            doc.tracks.push_back(read_track(value, name, "tracks." + name, settings, order, opts));
+    } else if (j.is_object() || j.is_array()) {
+        doc.tracks.push_back(read_track(j, "", "", settings, order, opts));
+    } else {
+        throw input_error(opts.source, fmt::format("expected a JSON object or array, got {}", type_name(j)));
+    }
+    return doc;
+}
+
+raw_document read_ndjson(std::string_view text, const read_options& opts, warnings&) {
+    raw_document doc;
+    std::map<std::string, std::size_t> index;
+    std::size_t line_no = 0;
+    while (!text.empty()) {
+        const std::size_t eol = text.find('\n');
+        const std::string_view line = text.substr(0, eol);
+        text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
+        ++line_no;
+        if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;
+        const std::string where = fmt::format("{}:{}", opts.source, line_no);
+        const json j = parse(line, opts.source, line_no);
+        std::string name;
+        if (j.is_object() && j.contains("track")) {
+            if (!j.at("track").is_string())
+                throw input_error(where, fmt::format("'track': expected a string, got {}", type_name(j.at("track"))));
+            name = j.at("track").get<std::string>();
+            doc.named = true;
+        }
+        const auto [it, added] = index.emplace(name, doc.tracks.size());
+        if (added) doc.tracks.push_back(raw_track{name, opts.settings, {}});
+        doc.tracks[it->second].keys.push_back(key_reader(j, where, opts.order, true).read());
+    }
+    if (doc.tracks.empty()) throw input_error(opts.source, "empty input: expected one key object per line");
+    if (doc.named && index.count(""))
+        throw input_error(opts.source, "some lines have a 'track' and some do not: expected all or none");
+    return doc;
+}
+
+namespace {
+
+std::string quoted(const std::string& name) { return json(name).dump(); }
+
+class json_writer final : public table_writer {
+public:
+    json_writer(std::string& out, const table_info& info, const write_options& opts, warnings& warn, bool lines)
+        : out_(out), info_(info), opts_(opts), warn_(warn), lines_(lines) {
+        if (lines_) return;
+        out_ += '{';
+        if (info.fps) out_ += "\"fps\": ", append_number(out_, *info.fps, std::nullopt), out_ += ", ";
+        if (info.how) fmt::format_to(std::back_inserter(out_), "\"method\": \"{}\", ", to_string(*info.how));
+        fmt::format_to(std::back_inserter(out_), "\"rep\": \"{}\", \"angles\": \"{}\"", to_string(opts.representation),
+                       to_string(opts.angles));
+        if (opts.representation == rep::euler) fmt::format_to(std::back_inserter(out_), ", \"euler\": \"{}\"", opts.euler->name);
+        if (opts.representation == rep::quat)
+            fmt::format_to(std::back_inserter(out_), ", \"quat_order\": \"{}\"", to_string(opts.order));
+        if (info.named) out_ += ", \"tracks\": {";
+    }
+
+    void begin_track(const std::string& name, bool has_translation) override {
+        name_ = quoted(name);
+        translation_ = has_translation && opts_.representation != rep::matrix4;
+        if (lines_) return;
+        if (tracks_++) out_ += "]}";
+        if (info_.named) fmt::format_to(std::back_inserter(out_), "{}\n{}: {{", tracks_ > 1 ? "," : "", name_);
+        else out_ += ", ";
+        fmt::format_to(std::back_inserter(out_), "\"{}\": [", info_.rows_name);
+        rows_ = 0;
+    }
+
+    void row(const sample& s) override {
+        if (!lines_) out_ += rows_++ ? ",\n" : "\n";
+        out_ += '{';
+        if (lines_ && info_.named) fmt::format_to(std::back_inserter(out_), "\"track\": {}, ", name_);
+        const bool with_frame = s.frame && info_.times != time_columns::time_only;
+        if (with_frame) out_ += "\"frame\": ", append_number(out_, *s.frame, std::nullopt);
+        if (!with_frame || info_.times == time_columns::frame_and_time) {
+            fmt::format_to(std::back_inserter(out_), "{}\"{}\": ", with_frame ? ", " : "", info_.time_name);
+            append_number(out_, s.time, opts_.precision);
+        }
+        write_rotation(row_values(s, opts_, warn_));
+        if (translation_ && s.translation) {
+            out_ += ", \"translation\": ";
+            array({s.translation->x, s.translation->y, s.translation->z});
+        }
+        out_ += lines_ ? "}\n" : "}";
+    }
+
+    void finish() override {
+        if (lines_) return;
+        if (tracks_) out_ += info_.named ? "]}" : "]";
+        out_ += info_.named ? "}}\n" : "}\n";
+    }
+
+private:
+    void array(std::initializer_list<double> v) { array(std::data(v), v.size()); }
+    void array(const double* v, std::size_t n) {
+        out_ += '[';
+        for (std::size_t i = 0; i < n; ++i) {
+            if (i) out_ += ", ";
+            append_number(out_, v[i], opts_.precision);
+        }
+        out_ += ']';
+    }
+
+    void write_rotation(const rotation_values& r) {
+        const double* v = r.v.data();
+        switch (opts_.representation) {
+            case rep::quat: out_ += ", \"quat\": ", array(v, 4); break;
+            case rep::axis_angle:
+                out_ += ", \"axis\": ", array(v, 3);
+                out_ += ", \"angle\": ", append_number(out_, v[3], opts_.precision);
+                break;
+            case rep::rotvec: out_ += ", \"rotvec\": ", array(v, 3); break;
+            case rep::euler: out_ += ", \"euler\": ", array(v, 3); break;
+            case rep::matrix:
+            case rep::matrix4: {
+                const std::size_t n = opts_.representation == rep::matrix ? 3 : 4;
+                out_ += ", \"matrix\": [";
+                for (std::size_t i = 0; i < n; ++i) {
+                    if (i) out_ += ", ";
+                    array(v + i * n, n);
+                }
+                out_ += ']';
+                break;
+            }
+        }
+    }
+
+    std::string& out_;
+    table_info info_;
+    write_options opts_;
+    warnings& warn_;
+    bool lines_;
+    std::string name_;
+    bool translation_ = false;
+    std::size_t tracks_ = 0, rows_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<table_writer> make_json_writer(std::string& out, const table_info& info, const write_options& opts,
+                                               warnings& warn, bool lines) {
+    return std::make_unique<json_writer>(out, info, opts, warn, lines);
+}
+
+}  // namespace keyrot

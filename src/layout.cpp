@@ -1,0 +1,160 @@
+#include "keyrot/layout.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace keyrot {
+namespace {
+
+constexpr std::array<std::string_view, 4> quat_wxyz = {"qw", "qx", "qy", "qz"};
+constexpr std::array<std::string_view, 4> quat_xyzw = {"qx", "qy", "qz", "qw"};
+constexpr std::array<std::string_view, 4> axis_angle_cols = {"ax", "ay", "az", "angle"};
+constexpr std::array<std::string_view, 3> rotvec_cols = {"rx", "ry", "rz"};
+constexpr std::array<std::string_view, 3> euler_cols = {"e1", "e2", "e3"};
+constexpr std::array<std::string_view, 16> matrix4_cols = {"m00", "m01", "m02", "m03", "m10", "m11",
+                                                           "m12", "m13", "m20", "m21", "m22", "m23",
+                                                           "m30", "m31", "m32", "m33"};
+constexpr std::array<std::string_view, 9> matrix_cols = {"m00", "m01", "m02", "m10", "m11",
+                                                         "m12", "m20", "m21", "m22"};
+
+}  // namespace
+
+std::optional<quat_order> parse_quat_order(std::string_view name) {
+    if (name == "wxyz") return quat_order::wxyz;
+    if (name == "xyzw") return quat_order::xyzw;
+    return std::nullopt;
+}
+
+std::string_view to_string(quat_order o) noexcept { return o == quat_order::wxyz ? "wxyz" : "xyzw"; }
+
+std::span<const std::string_view> rotation_columns(rep r, quat_order order) noexcept {
+    switch (r) {
+        case rep::quat: return order == quat_order::wxyz ? quat_wxyz : quat_xyzw;
+        case rep::axis_angle: return axis_angle_cols;
+        case rep::rotvec: return rotvec_cols;
+        case rep::euler: return euler_cols;
+        case rep::matrix: return matrix_cols;
+        case rep::matrix4: return matrix4_cols;
+    }
+    return {};
+}
+
+std::array<double, 4> from_quat_order(std::array<double, 4> v, quat_order order) noexcept {
+    if (order == quat_order::wxyz) return v;
+    return {v[3], v[0], v[1], v[2]};
+}
+
+rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts) {
+    rotation_values out;
+    auto put = [&out](double x) { out.v[out.size++] = x; };
+    auto angle = [&opts](double radians) { return from_radians(radians, opts.angles); };
+    switch (opts.representation) {
+        case rep::quat:
+            if (opts.order == quat_order::wxyz) put(q.w);
+            put(q.x), put(q.y), put(q.z);
+            if (opts.order == quat_order::xyzw) put(q.w);
+            break;
+        case rep::axis_angle: {
+            const axis_angle aa = to_axis_angle(q);
+            put(aa.axis.x), put(aa.axis.y), put(aa.axis.z), put(angle(aa.angle));
+            break;
+        }
+        case rep::rotvec: {
+            // Scale the unit axis by the converted angle rather than
+            // converting each component: one rounding fewer.
+            const axis_angle aa = to_axis_angle(q);
+            const double a = angle(aa.angle);
+            put(a * aa.axis.x), put(a * aa.axis.y), put(a * aa.axis.z);
+            break;
+        }
+        case rep::euler: {
+            const euler_angles e = to_euler(q, *opts.euler);
+            for (double x : e.angles) put(angle(x));
+            out.gimbal_lock = e.gimbal_lock;
+            break;
+        }
+        case rep::matrix:
+        case rep::matrix4: {
+            const mat3 m = to_matrix(q);
+            const bool four = opts.representation == rep::matrix4;
+            const vec3 t = translation.value_or(vec3{});
+            const double column[3] = {t.x, t.y, t.z};
+            for (std::size_t r = 0; r < 3; ++r) {
+                for (double x : m.m[r]) put(x);
+                if (four) put(column[r]);
+            }
+            if (four) put(0), put(0), put(0), put(1);
+            break;
+        }
+    }
+    return out;
+}
+
+void append_number(std::string& out, double v, std::optional<int> precision) {
+    if (v == 0) v = 0;  // drops the sign of -0
+    if (!precision) {
+        fmt::format_to(std::back_inserter(out), "{}", v);
+        return;
+    }
+    const std::size_t start = out.size();
+    fmt::format_to(std::back_inserter(out), "{:.{}f}", v, *precision);
+    if (out.find('.', start) != std::string::npos) {
+        while (out.back() == '0') out.pop_back();
+        if (out.back() == '.') out.pop_back();
+    }
+    if (out.compare(start, std::string::npos, "-0") == 0) out.erase(start, 1);  // -0.0001 at 2 digits
+}
+
+void warn_gimbal_lock(warnings& warn, const euler_seq& seq) {
+    warn.once("gimbal", fmt::format("gimbal lock in Euler sequence {}: the third angle is set to 0", seq.name));
+}
+
+}  // namespace keyrot
+
+#include <charconv>
+
+namespace keyrot {
+
+std::optional<double> parse_number(std::string_view text) {
+    while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+    while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+    if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+    if (text.empty() || text.front() == '+' || text.front() == ' ') return std::nullopt;
+    double v = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+    if (ec != std::errc{} || end != text.data() + text.size() || !std::isfinite(v)) return std::nullopt;
+    return v;
+}
+
+}  // namespace keyrot
+
+namespace keyrot {
+
+bool is_valid_utf8(std::string_view text) noexcept {
+    const auto* p = reinterpret_cast<const unsigned char*>(text.data());
+    const auto* end = p + text.size();
+    while (p < end) {
+        const unsigned c = *p;
+        if (c < 0x80) {
+            ++p;
+            continue;
+        }
+        int extra;
+        unsigned min, cp;
+        if ((c & 0xE0) == 0xC0) extra = 1, min = 0x80, cp = c & 0x1F;
+        else if ((c & 0xF0) == 0xE0) extra = 2, min = 0x800, cp = c & 0x0F;
+        else if ((c & 0xF8) == 0xF0) extra = 3, min = 0x10000, cp = c & 0x07;
+        else return false;
+        if (end - p <= extra) return false;
+        for (int i = 1; i <= extra; ++i) {
+            if ((p[i] & 0xC0) != 0x80) return false;
+            cp = (cp << 6) | (p[i] & 0x3Fu);
+        }
+        if (cp < min || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+        p += extra + 1;
+    }
+    return true;
+}
+
+}  // namespace keyrot

@@ -1,0 +1,64 @@
+#include "keyrot/quat.hpp"
+
+#include <cmath>
+
+namespace keyrot {
+
+vec3 operator+(vec3 a, vec3 b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+vec3 operator-(vec3 a, vec3 b) noexcept { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+vec3 operator*(double s, vec3 v) noexcept { return {s * v.x, s * v.y, s * v.z}; }
+double dot(vec3 a, vec3 b) noexcept { return a.x * b.x + a.y * b.y + a.z * b.z; }
+vec3 cross(vec3 a, vec3 b) noexcept {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+double norm(vec3 v) noexcept { return std::hypot(v.x, v.y, v.z); }
+
+quat operator-(quat q) noexcept { return {-q.w, -q.x, -q.y, -q.z}; }
+
+quat operator*(quat a, quat b) noexcept {
+    return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
+            a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+            a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+            a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+}
+
+double dot(quat a, quat b) noexcept { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
+
+double norm(quat q) noexcept { return std::hypot(std::hypot(q.w, q.x), std::hypot(q.y, q.z)); }
+
+quat conjugate(quat q) noexcept { return {q.w, -q.x, -q.y, -q.z}; }
+
+vec3 vector_part(quat q) noexcept { return {q.x, q.y, q.z}; }
+
+quat normalized(quat q) noexcept {
+    const double n = norm(q);
+    return {q.w / n, q.x / n, q.y / n, q.z / n};
+}
+
+quat exp(vec3 v) noexcept {
+    const double angle = norm(v);
+    if (angle == 0) return {};
+    const double s = std::sin(angle) / angle;
+    return {std::cos(angle), s * v.x, s * v.y, s * v.z};
+}
+
+vec3 log(quat q) noexcept {
+    const vec3 v = vector_part(q);
+    const double sin_half = norm(v);
+    // atan2 keeps full relative accuracy for tiny and for near-pi angles,
+    // where acos(w) would lose half the digits.
+    const double half = std::atan2(sin_half, q.w);
+    if (sin_half == 0) return q.w >= 0 ? vec3{} : vec3{half, 0, 0};
+    return (half / sin_half) * v;
+}
+
+double geodesic_angle(quat a, quat b) noexcept {
+    const quat r = conjugate(a) * b;
+    return 2 * std::atan2(norm(vector_part(r)), std::fabs(r.w));
+}
+
+vec3 rotate(quat q, vec3 v) noexcept {
+    return vector_part(q * quat{0, v.x, v.y, v.z} * conjugate(q));
+}
+
+}  // namespace keyrot

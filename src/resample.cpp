@@ -1,0 +1,47 @@
+#include "keyrot/resample.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "keyrot/tolerances.hpp"
+
+namespace keyrot {
+
+void resample(const track& t, const resample_options& opts, const std::string& source,
+              const std::function<void(const sample&)>& emit) {
+    const rotation_curve curve(t, opts.how, opts.way);
+    const translation_curve translation(t, opts.how);
+    const auto& keys = t.keys;
+    const double fps = opts.fps;
+    const double first = std::ceil(keys.front().time * fps - tol::grid_frames);
+    const double last = std::floor(keys.back().time * fps + tol::grid_frames);
+    if (last - first > max_frames)
+        throw input_error(source, fmt::format("{}keys span {} frames at {} fps: expected at most {}",
+                                              t.name.empty() ? "" : fmt::format("track '{}': ", t.name),
+                                              last - first, fps, max_frames));
+    const double key_tol = tol::grid_frames / fps;  // seconds
+    std::size_t i = 0;                              // current segment [i, i + 1]
+    quat previous{};
+    bool started = false;
+    for (double k = first; k <= last; ++k) {
+        sample s;
+        s.frame = k;
+        s.time = k / fps;
+        while (i + 1 < keys.size() && keys[i + 1].time <= s.time + key_tol) ++i;
+        if (i + 1 == keys.size() || std::fabs(s.time - keys[i].time) <= key_tol) {
+            s.rotation = curve.at_key(i);
+        } else {
+            // keys[i].time < s.time < keys[i + 1].time here
+            const double h = (s.time - keys[i].time) / (keys[i + 1].time - keys[i].time);
+            s.rotation = curve.at(i, h);
+        }
+        if (started && dot(previous, s.rotation) < 0) s.rotation = -s.rotation;
+        previous = s.rotation;
+        started = true;
+        s.translation = translation.at(s.time, key_tol);
+        emit(s);
+    }
+}
+
+}  // namespace keyrot

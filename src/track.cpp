@@ -1,0 +1,132 @@
+#include "keyrot/track.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "keyrot/tolerances.hpp"
+
+namespace keyrot {
+namespace {
+
+quat unit_quaternion(const raw_key& k, const key_settings& s, warnings& warn, bool& renormalised) {
+    const auto& v = k.values;
+    const quat q{v[0], v[1], v[2], v[3]};
+    const double n = norm(q);
+    if (n == 0) throw input_error(k.where, "quaternion is zero: expected a non-zero quaternion");
+    if (std::fabs(n - 1) > tol::unit_norm) {
+        const auto what = fmt::format("quaternion norm {} differs from 1 by more than {}", n, tol::unit_norm);
+        if (s.strict) throw input_error(k.where, what + " (--strict)");
+        warn.once("norm", fmt::format("{} ({}); such keys are normalised", what, k.where));
+        renormalised = true;
+    }
+    return normalized(q);
+}
+
+quat axis_angle_rotation(const raw_key& k, const key_settings& s) {
+    const auto& v = k.values;
+    const vec3 axis{v[0], v[1], v[2]};
+    const double angle = to_radians(v[3], s.angles);
+    if (norm(axis) == 0) {
+        if (angle != 0) throw input_error(k.where, "axis is zero: expected a non-zero axis for a non-zero angle");
+        return {};
+    }
+    return from_axis_angle(axis, angle);
+}
+
+quat matrix_rotation(const raw_key& k) {
+    const auto& v = k.values;
+    const std::size_t cols = k.kind == rep::matrix4 ? 4 : 3;
+    mat3 m;
+    for (std::size_t r = 0; r < 3; ++r)
+        for (std::size_t c = 0; c < 3; ++c) m.m[r][c] = v[r * cols + c];
+    if (k.kind == rep::matrix4) {
+        const double bottom[4] = {v[12], v[13], v[14], v[15]};
+        if (bottom[0] != 0 || bottom[1] != 0 || bottom[2] != 0 || bottom[3] != 1)
+            throw input_error(k.where, fmt::format("4x4 matrix bottom row is [{}, {}, {}, {}]: expected [0, 0, 0, 1]",
+                                                   bottom[0], bottom[1], bottom[2], bottom[3]));
+    }
+    double worst = 0;  // max |R R^T - I|
+    for (std::size_t r = 0; r < 3; ++r)
+        for (std::size_t c = 0; c < 3; ++c) {
+            double e = r == c ? -1.0 : 0.0;
+            for (std::size_t i = 0; i < 3; ++i) e += m.m[r][i] * m.m[c][i];
+            worst = std::fmax(worst, std::fabs(e));
+        }
+    const auto& a = m.m;
+    const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                       a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                       a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+    if (worst > tol::orthonormal)
+        throw input_error(k.where, fmt::format("matrix is not a rotation: |R Rt - I| = {:.3g}, expected at most {}",
+                                               worst, tol::orthonormal));
+    if (det < 0)
+        throw input_error(k.where, fmt::format("matrix is not a rotation: determinant {:.6g}, expected +1 "
+                                               "(a reflection)", det));
+    return from_matrix(m);
+}
+
+key convert_key(const raw_key& k, const key_settings& s, warnings& warn) {
+    key out;
+    out.given_as = k.kind;
+    out.translation = k.translation;
+    out.frame = k.frame;
+    out.time = k.frame ? *k.frame / s.key_fps : *k.time;
+    // A row with both (keyrot's own resample output) is timed by its frame,
+    // which is exact; the time must be the same instant to within half a frame.
+    if (k.frame && k.time && !(std::fabs(*k.time * s.key_fps - *k.frame) <= 0.5))
+        throw input_error(k.where, fmt::format("time {} s and frame {} disagree at {} fps: expected one of them, "
+                                               "or both for the same instant (see --key-fps)",
+                                               *k.time, *k.frame, s.key_fps));
+    const auto& v = k.values;
+    switch (k.kind) {
+        case rep::quat: out.rotation = unit_quaternion(k, s, warn, out.renormalised); break;
+        case rep::axis_angle: out.rotation = axis_angle_rotation(k, s); break;
+        case rep::rotvec:
+            out.rotation = from_rotvec({to_radians(v[0], s.angles), to_radians(v[1], s.angles),
+                                        to_radians(v[2], s.angles)});
+            break;
+        case rep::euler: {
+            if (!s.euler)
+                throw input_error(k.where, "Euler angles need a sequence: expected --euler SEQ or an \"euler\" field");
+            const std::array<double, 3> e = {to_radians(v[0], s.angles), to_radians(v[1], s.angles),
+                                             to_radians(v[2], s.angles)};
+            out.euler = e;
+            out.rotation = from_euler(e, *s.euler);
+            break;
+        }
+        case rep::matrix:
+        case rep::matrix4:
+            out.rotation = matrix_rotation(k);
+            if (k.kind == rep::matrix4) {
+                if (k.translation)
+                    throw input_error(k.where, "4x4 matrix and a translation: expected one translation per key");
+                out.translation = vec3{v[3], v[7], v[11]};
+            }
+            break;
+    }
+    return out;
+}
+
+}  // namespace
+
+track make_track(const raw_track& raw, warnings& warn) {
+    track t{raw.name, raw.settings.euler, {}};
+    if (raw.keys.empty())
+        throw input_error(warn.source(), raw.name.empty() ? std::string("no keys: expected at least one key")
+                                                          : fmt::format("track '{}' has no keys: expected at least one key", raw.name));
+    t.keys.reserve(raw.keys.size());
+    for (const raw_key& rk : raw.keys) {
+        key k = convert_key(rk, raw.settings, warn);
+        if (!std::isfinite(k.time))
+            throw input_error(rk.where, fmt::format("time {} is out of range: expected a finite time", k.time));
+        if (!t.keys.empty() && !(k.time > t.keys.back().time))
+            throw input_error(rk.where, fmt::format("time {} s is not after the previous key's {} s: expected "
+                                                    "strictly increasing times",
+                                                    k.time, t.keys.back().time));
+        t.keys.push_back(k);
+    }
+    return t;
+}
+
+}  // namespace keyrot
