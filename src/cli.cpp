@@ -42,11 +42,11 @@ void add_common(CLI::App& sub, options& o, raw_flags& f) {
     deg->excludes(rad);
     sub.add_option("--precision", f.precision, "digits after the decimal point (default: shortest round trip)");
     sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
+    sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
 }
 
 void add_resample_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--fps", o.fps, "output frame rate (default 24)");
-    sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps)");
     sub.add_option("--method", f.method, "interpolation method")->check(CLI::IsMember(names(method_names)));
     sub.add_option("--path", f.path, "shortest: consecutive keys in one hemisphere; direct: signs as given")
         ->check(CLI::IsMember(names(path_names)));
