@@ -37,12 +37,46 @@ std::string_view to_string(angle_unit u) noexcept {
     return u == angle_unit::degrees ? "degrees" : "radians";
 }
 
+namespace {
+
+/// x * (hi + lo), rounded once: hi + lo is pi/180 or 180/pi to 106 bits,
+/// so a unit conversion adds half an ulp, not one and a half.
+double scale(double x, double hi, double lo) noexcept {
+    const double p = x * hi;
+    return p + (std::fma(x, hi, -p) + x * lo);
+}
+
+struct sin_cos {
+    double sin, cos;
+};
+
+/// sin and cos of an angle in `unit`. Degrees are reduced by whole quarter
+/// turns exactly (remquo, as GeographicLib's sincosd), so that 90, 180 and
+/// 360 degrees give exact zeros and ones.
+sin_cos sincos(double angle, angle_unit unit) noexcept {
+    if (unit == angle_unit::radians) return {std::sin(angle), std::cos(angle)};
+    int quarter = 0;
+    const double rest = std::remquo(angle, 90.0, &quarter);
+    const double r = to_radians(rest, angle_unit::degrees);
+    // At 45 degrees sine and cosine are equal; make them so (sqrt(0.5) is correctly rounded).
+    const double s = std::fabs(rest) == 45 ? std::copysign(std::sqrt(0.5), rest) : std::sin(r);
+    const double c = std::fabs(rest) == 45 ? std::sqrt(0.5) : std::cos(r);
+    switch (static_cast<unsigned>(quarter) & 3u) {
+        case 0: return {s, c};
+        case 1: return {c, -s};
+        case 2: return {-s, -c};
+        default: return {-c, s};
+    }
+}
+
+}  // namespace
+
 double to_radians(double angle, angle_unit from) noexcept {
-    return from == angle_unit::degrees ? angle * (std::numbers::pi / 180) : angle;
+    return from == angle_unit::degrees ? scale(angle, 0.017453292519943295, 2.9486522708701687e-19) : angle;
 }
 
 double from_radians(double radians, angle_unit to) noexcept {
-    return to == angle_unit::degrees ? radians * (180 / std::numbers::pi) : radians;
+    return to == angle_unit::degrees ? scale(radians, 57.29577951308232, -1.9878495670576283e-15) : radians;
 }
 
 std::optional<euler_seq> parse_euler_seq(std::string_view name) {
@@ -61,24 +95,24 @@ std::optional<euler_seq> parse_euler_seq(std::string_view name) {
     return seq;
 }
 
-quat from_axis_angle(vec3 axis, double angle) noexcept {
-    const double half = angle / 2;
-    const double s = std::sin(half) / norm(axis);
-    return {std::cos(half), s * axis.x, s * axis.y, s * axis.z};
+quat from_axis_angle(vec3 axis, double angle, angle_unit unit) noexcept {
+    const sin_cos half = sincos(angle / 2, unit);
+    const double s = half.sin / norm(axis);
+    return {half.cos, s * axis.x, s * axis.y, s * axis.z};
 }
 
-quat from_rotvec(vec3 rotvec) noexcept {
+quat from_rotvec(vec3 rotvec, angle_unit unit) noexcept {
     const double angle = norm(rotvec);
     if (angle == 0) return {};
-    return from_axis_angle(rotvec, angle);
+    return from_axis_angle(rotvec, angle, unit);
 }
 
 namespace {
 
-quat elementary(int axis, double angle) noexcept {
-    quat q{std::cos(angle / 2), 0, 0, 0};
-    const double s = std::sin(angle / 2);
-    (axis == 0 ? q.x : axis == 1 ? q.y : q.z) = s;
+quat elementary(int axis, double angle, angle_unit unit) noexcept {
+    const sin_cos half = sincos(angle / 2, unit);
+    quat q{half.cos, 0, 0, 0};
+    (axis == 0 ? q.x : axis == 1 ? q.y : q.z) = half.sin;
     return q;
 }
 
@@ -92,10 +126,10 @@ double wrap_pi(double a) noexcept {
 
 }  // namespace
 
-quat from_euler(std::array<double, 3> angles, const euler_seq& seq) noexcept {
-    const quat a = elementary(seq.axes[0], angles[0]);
-    const quat b = elementary(seq.axes[1], angles[1]);
-    const quat c = elementary(seq.axes[2], angles[2]);
+quat from_euler(std::array<double, 3> angles, const euler_seq& seq, angle_unit unit) noexcept {
+    const quat a = elementary(seq.axes[0], angles[0], unit);
+    const quat b = elementary(seq.axes[1], angles[1], unit);
+    const quat c = elementary(seq.axes[2], angles[2], unit);
     // Intrinsic: each rotation about the already-rotated axes, so the first
     // one is outermost. Extrinsic: the first one is applied first.
     return seq.intrinsic ? a * b * c : c * b * a;
@@ -130,7 +164,8 @@ axis_angle to_axis_angle(quat q) noexcept {
         const double first = v.x != 0 ? v.x : v.y != 0 ? v.y : v.z;
         if (first < 0) v = -1.0 * v;
     }
-    return {(1 / sin_half) * v, 2 * std::atan2(sin_half, q.w)};
+    // Dividing (not multiplying by 1 / sin_half) keeps a single-axis rotation's axis exactly unit.
+    return {{v.x / sin_half, v.y / sin_half, v.z / sin_half}, 2 * std::atan2(sin_half, q.w)};
 }
 
 vec3 to_rotvec(quat q) noexcept {

@@ -26,12 +26,11 @@ quat unit_quaternion(const raw_key& k, const key_settings& s, warnings& warn, bo
 quat axis_angle_rotation(const raw_key& k, const key_settings& s) {
     const auto& v = k.values;
     const vec3 axis{v[0], v[1], v[2]};
-    const double angle = to_radians(v[3], s.angles);
     if (norm(axis) == 0) {
-        if (angle != 0) throw input_error(k.where, "axis is zero: expected a non-zero axis for a non-zero angle");
+        if (v[3] != 0) throw input_error(k.where, "axis is zero: expected a non-zero axis for a non-zero angle");
         return {};
     }
-    return from_axis_angle(axis, angle);
+    return from_axis_angle(axis, v[3], s.angles);
 }
 
 quat matrix_rotation(const raw_key& k) {
@@ -83,16 +82,13 @@ key convert_key(const raw_key& k, const key_settings& s, warnings& warn) {
         case rep::quat: out.rotation = unit_quaternion(k, s, warn, out.renormalised); break;
         case rep::axis_angle: out.rotation = axis_angle_rotation(k, s); break;
         case rep::rotvec:
-            out.rotation = from_rotvec({to_radians(v[0], s.angles), to_radians(v[1], s.angles),
-                                        to_radians(v[2], s.angles)});
+            out.rotation = from_rotvec({v[0], v[1], v[2]}, s.angles);
             break;
         case rep::euler: {
             if (!s.euler)
                 throw input_error(k.where, "Euler angles need a sequence: expected --euler SEQ or an \"euler\" field");
-            const std::array<double, 3> e = {to_radians(v[0], s.angles), to_radians(v[1], s.angles),
-                                             to_radians(v[2], s.angles)};
-            out.euler = e;
-            out.rotation = from_euler(e, *s.euler);
+            out.euler = {to_radians(v[0], s.angles), to_radians(v[1], s.angles), to_radians(v[2], s.angles)};
+            out.rotation = from_euler({v[0], v[1], v[2]}, *s.euler, s.angles);
             break;
         }
         case rep::matrix:

@@ -23,6 +23,7 @@ inline constexpr std::array<std::string_view, 6> rep_names = {
 enum class angle_unit { degrees, radians };
 std::optional<angle_unit> parse_angle_unit(std::string_view name);
 std::string_view to_string(angle_unit u) noexcept;
+/// Unit conversions, rounded once (to within half an ulp).
 double to_radians(double angle, angle_unit from) noexcept;
 double from_radians(double radians, angle_unit to) noexcept;
 
@@ -41,13 +42,17 @@ struct axis_angle {
     double angle = 0;    ///< radians
 };
 
+// The from_ functions take their angles in `unit`; degrees are reduced by
+// whole quarter turns before any rounding, so 90, 180 and 360 are exact.
+
 /// Precondition: axis non-zero and finite (it need not be unit).
 /// from_axis_angle({0, 0, 2}, pi/2) = (cos 45deg, 0, 0, sin 45deg).
-quat from_axis_angle(vec3 axis, double angle) noexcept;
+quat from_axis_angle(vec3 axis, double angle, angle_unit unit = angle_unit::radians) noexcept;
 /// Rotation vector = unit axis * angle; the zero vector is the identity.
-quat from_rotvec(vec3 rotvec) noexcept;
+quat from_rotvec(vec3 rotvec, angle_unit unit = angle_unit::radians) noexcept;
 /// Angles in the order of the sequence. from_euler({a, b, c}, "XYZ") = Rx(a) Ry(b) Rz(c).
-quat from_euler(std::array<double, 3> angles, const euler_seq& seq) noexcept;
+quat from_euler(std::array<double, 3> angles, const euler_seq& seq,
+                angle_unit unit = angle_unit::radians) noexcept;
 /// Precondition: m is a rotation matrix to within the reader's tolerance.
 /// Picks the best-conditioned of the four Shepperd branches, as scipy does.
 quat from_matrix(const mat3& m) noexcept;

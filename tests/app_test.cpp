@@ -1,0 +1,161 @@
+// The commands run in-process, with streams and a scratch directory.
+#include "keyrot/app.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "keyrot/cli.hpp"
+
+using namespace keyrot;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct result {
+    int status;
+    std::string out, err;
+};
+
+result run_with(const options& o, const std::string& input = "") {
+    std::istringstream in(input);
+    std::ostringstream out, err;
+    const int status = run(o, in, out, err);
+    return {status, out.str(), err.str()};
+}
+
+options parse(std::vector<const char*> args) {
+    args.insert(args.begin(), "keyrot");
+    std::ostringstream out;
+    return *parse_command_line(static_cast<int>(args.size()), args.data(), out);
+}
+
+/// A fresh directory under the system's temporary directory, removed after.
+struct scratch {
+    fs::path dir;
+    scratch() {
+        dir = fs::temp_directory_path() / ("keyrot-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter()++));
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    ~scratch() { fs::remove_all(dir); }
+    static int& counter() {
+        static int n = 0;
+        return n;
+    }
+    std::string file(const std::string& name, const std::string& text) const {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    }
+    static std::string read(const fs::path& p) {
+        std::ifstream in(p);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+};
+
+const char* two_keys = "time,ax,ay,az,angle\n0,0,0,1,0\n1,0,0,1,90\n";
+
+}  // namespace
+
+TEST_CASE("resample from standard input to standard output") {
+    const result r = run_with(parse({"resample", "--fps", "4", "--precision", "6"}), two_keys);
+    CHECK(r.status == 0);
+    CHECK(r.err.empty());
+    CHECK(r.out ==
+          "frame,time,ax,ay,az,angle\n0,0,1,0,0,0\n1,0.25,0,0,1,22.5\n2,0.5,0,0,1,45\n3,0.75,0,0,1,67.5\n4,1,0,0,1,90\n");
+}
+
+TEST_CASE("convert keeps the keys and their frame column") {
+    const result r = run_with(parse({"convert", "--rep", "quat", "--precision", "4"}),
+                              "frame,ax,ay,az,angle\n0,0,0,1,0\n7,0,0,1,90\n");
+    CHECK(r.out == "frame,qw,qx,qy,qz\n0,1,0,0,0\n7,0.7071,0,0,0.7071\n");
+    const result j = run_with(parse({"convert", "--to", "json", "--rep", "rotvec"}), "time,qw,qx,qy,qz\n0.5,1,0,0,0\n");
+    CHECK(j.out == "{\"rep\": \"rotvec\", \"angles\": \"degrees\", \"keys\": [\n{\"time\": 0.5, \"rotvec\": [0, 0, 0]}]}\n");
+}
+
+TEST_CASE("resample output chains into convert, in every format") {
+    for (const char* to : {"csv", "json", "ndjson"}) {
+        CAPTURE(std::string(to));
+        const result first = run_with(parse({"resample", "--to", to, "--rep", "matrix4"}), two_keys);
+        REQUIRE(first.status == 0);
+        const result second = run_with(parse({"convert", "--to", "csv", "--rep", "axis-angle", "--precision", "9"}), first.out);
+        CHECK(second.status == 0);
+        // frame 24 = 1 s is the last key; matrix4 carried a zero translation along
+        CHECK(second.out.find("\n24,0,0,1,90,0,0,0\n") != std::string::npos);
+    }
+}
+
+TEST_CASE("Euler output needs a sequence; --out-euler defaults to --euler") {
+    CHECK_THROWS_AS(run_with(parse({"convert", "--rep", "euler"}), two_keys), usage_error);
+    const result r = run_with(parse({"convert", "--rep", "euler", "--euler", "ZYX"}), two_keys);
+    CHECK(r.out == "time,e1,e2,e3\n0,0,0,0\n1,90,0,0\n");
+    // the document's own sequence serves too
+    const result j = run_with(parse({"convert", "--rep", "euler", "--to", "csv"}),
+                              R"({"euler": "xyz", "keys": [{"time": 0, "euler": [0, 0, 30]}]})");
+    REQUIRE(j.out.rfind("time,e1,e2,e3\n0,0,0,", 0) == 0);
+    CHECK(std::fabs(std::stod(j.out.substr(j.out.rfind(',') + 1)) - 30) <= 8e-15);
+}
+
+TEST_CASE("-o writes the file; an error leaves no file and an existing one untouched") {
+    scratch s;
+    const std::string good = s.file("good.csv", two_keys);
+    const std::string bad = s.file("bad.csv", "time,qw,qx,qy,qz\n0,1,0,0,x\n");
+    const std::string target = (s.dir / "out.json").string();
+    options o = parse({"resample", good.c_str(), "-o", target.c_str()});
+    CHECK(run_with(o).status == 0);
+    CHECK(scratch::read(target).find("{\"fps\": 24") == 0);  // format from the extension of -o
+
+    std::ofstream(target) << "precious";
+    o = parse({"resample", bad.c_str(), "-o", target.c_str()});
+    const result r = run_with(o);
+    CHECK(r.status == 2);
+    CHECK(r.err == "keyrot: " + bad + ":2: column 'qz': expected a finite number, got 'x'\n");
+    CHECK(scratch::read(target) == "precious");
+    o = parse({"resample", bad.c_str(), "-o", (s.dir / "new.csv").string().c_str()});
+    CHECK(run_with(o).status == 2);
+    std::size_t files = 0;
+    for (const auto& e : fs::directory_iterator(s.dir)) files += e.is_regular_file();
+    CHECK(files == 3);  // good.csv, bad.csv, out.json: nothing else, no temporary left
+}
+
+TEST_CASE("several inputs: --output-dir, a bad file is skipped and reported, status 2") {
+    scratch s;
+    const std::string a = s.file("a.csv", two_keys);
+    const std::string bad = s.file("bad.json", "{\"keys\": [}");
+    const std::string b = s.file("b.json", R"({"keys": [{"time": 0, "quat": [1,0,0,0]}]})");
+    CHECK_THROWS_AS(run_with(parse({"resample", a.c_str(), b.c_str()})), usage_error);
+    const std::string out_dir = (s.dir / "out").string();
+    const result r = run_with(parse({"resample", a.c_str(), bad.c_str(), b.c_str(), "--output-dir", out_dir.c_str(), "--to", "ndjson"}));
+    CHECK(r.status == 2);
+    CHECK(r.err.find("keyrot: " + bad + ":1: invalid JSON") == 0);
+    CHECK(fs::exists(s.dir / "out" / "a.ndjson"));
+    CHECK(fs::exists(s.dir / "out" / "b.ndjson"));
+    CHECK_FALSE(fs::exists(s.dir / "out" / "bad.ndjson"));
+}
+
+TEST_CASE("command-line checks") {
+    auto usage = [](std::vector<const char*> args) {
+        try {
+            parse(std::move(args));
+        } catch (const usage_error& e) {
+            return std::string(e.what());
+        }
+        return std::string();
+    };
+    CHECK(usage({"resample", "--fps", "0"}) == "--fps: expected a positive frame rate, got 0");
+    CHECK(usage({"resample", "--fps", "-24"}).find("--fps") != std::string::npos);
+    CHECK(usage({"resample", "--fps", "nan"}).find("--fps") != std::string::npos);
+    CHECK(usage({"resample", "--fps", "inf"}).find("--fps") != std::string::npos);
+    CHECK(usage({"resample", "--method", "cubic"}).find("--method") != std::string::npos);
+    CHECK(usage({"resample", "--rep", "quaternion"}).find("--rep") != std::string::npos);
+    CHECK(usage({"resample", "--precision", "18"}) == "--precision: expected 0 to 17 digits, got 18");
+    CHECK(usage({"resample", "--euler", "XXY"}).find("--euler: expected three axes") == 0);
+    CHECK(usage({"convert", "--method", "slerp"}).find("--method") != std::string::npos);  // resample only
+    CHECK(usage({"resample", "--out-degrees", "--out-radians"}).find("excludes") != std::string::npos);
+    CHECK(usage({}).find("subcommand") != std::string::npos);
+}

@@ -1,0 +1,41 @@
+#pragma once
+// Shared test helpers. doctest::Approx defaults to ~1e-5, far too loose for
+// rotations, so every comparison here names its tolerance.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "keyrot/quat.hpp"
+
+namespace keyrot::test {
+
+inline double max_diff(quat a, quat b) {
+    return std::fmax(std::fmax(std::fabs(a.w - b.w), std::fabs(a.x - b.x)),
+                     std::fmax(std::fabs(a.y - b.y), std::fabs(a.z - b.z)));
+}
+
+/// Same rotation (q or -q) to within tol per component.
+inline bool same_rotation(quat a, quat b, double tol) {
+    return max_diff(a, b) <= tol || max_diff(a, -b) <= tol;
+}
+
+inline bool near(double a, double b, double tol) { return std::fabs(a - b) <= tol; }
+
+/// Uniformly random unit quaternions, reproducible.
+class random_rotations {
+public:
+    explicit random_rotations(unsigned seed) : gen_(seed) {}
+    quat next() {
+        std::normal_distribution<double> n;
+        quat q{n(gen_), n(gen_), n(gen_), n(gen_)};
+        const double len = norm(q);
+        return {q.w / len, q.x / len, q.y / len, q.z / len};
+    }
+    double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
+
+private:
+    std::mt19937_64 gen_;
+};
+
+}  // namespace keyrot::test

@@ -1,0 +1,230 @@
+// Readers and writers of CSV, JSON and NDJSON.
+#include "keyrot/io.hpp"
+
+#include <doctest/doctest.h>
+
+#include <sstream>
+
+#include "helpers.hpp"
+
+using namespace keyrot;
+
+namespace {
+
+raw_document read(std::string_view text, format f, quat_order order = quat_order::wxyz) {
+    std::ostringstream err;
+    warnings warn(err, "in");
+    read_options o;
+    o.source = "in";
+    o.order = order;
+    return read_document(text, f, o, warn);
+}
+
+std::string error_of(std::string_view text, format f) {
+    try {
+        read(text, f);
+    } catch (const input_error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+std::string write(format f, const table_info& info, const write_options& w, const std::vector<sample>& rows,
+                  const std::string& track = "") {
+    std::string out;
+    std::ostringstream err;
+    warnings warn(err, "in");
+    auto writer = make_writer(f, out, info, w, warn);
+    writer->begin_track(track, rows.front().translation.has_value());
+    for (const sample& s : rows) writer->row(s);
+    writer->finish();
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("formats by name, extension and content") {
+    CHECK(format_of_path("a/b.CSV") == format::csv);
+    CHECK(format_of_path("x.jsonl") == format::ndjson);
+    CHECK(format_of_path("x.ndjson") == format::ndjson);
+    CHECK_FALSE(format_of_path("dir.json/file"));
+    CHECK(sniff_format("time,qw\n") == format::csv);
+    CHECK(sniff_format("  {\n \"keys\": []}") == format::json);
+    CHECK(sniff_format("[{\"time\": 0}]") == format::json);
+    CHECK(sniff_format("{\"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1, \"quat\": [1,0,0,0]}\n") == format::ndjson);
+    CHECK(sniff_format("{\"keys\": []}\n") == format::json);
+}
+
+TEST_CASE("CSV: columns in any order and case, comments, blank lines, BOM, CRLF") {
+    const auto doc = read("\xEF\xBB\xBF# comment\r\n\r\n QZ , Time,qx,QW,qy\r\n1,0,0,0,0\r\n  # another\n0,1,0,1,0", format::csv);
+    REQUIRE(doc.tracks.size() == 1);
+    CHECK_FALSE(doc.named);
+    const auto& k = doc.tracks[0].keys;
+    REQUIRE(k.size() == 2);
+    CHECK(*k[0].time == 0);
+    CHECK(k[0].values[0] == 0);  // w
+    CHECK(k[0].values[3] == 1);  // z
+    CHECK(k[1].values[0] == 1);
+    CHECK(k[1].where == "in:6");
+}
+
+TEST_CASE("CSV: tracks in order of first appearance, translations optional per key") {
+    const auto doc = read("track,time,rx,ry,rz,tx,ty,tz\nb,0,0,0,0,1,2,3\na,0,0,0,0,,,\nb,1,0,0,0,,,\n", format::csv);
+    CHECK(doc.named);
+    REQUIRE(doc.tracks.size() == 2);
+    CHECK(doc.tracks[0].name == "b");
+    CHECK(doc.tracks[0].keys.size() == 2);
+    CHECK(doc.tracks[0].keys[0].translation->z == 3);
+    CHECK_FALSE(doc.tracks[0].keys[1].translation);
+    CHECK(doc.tracks[1].name == "a");
+}
+
+TEST_CASE("CSV: every representation's columns") {
+    CHECK(read("time,ax,ay,az,angle\n0,0,0,1,90\n", format::csv).tracks[0].keys[0].kind == rep::axis_angle);
+    CHECK(read("time,e1,e2,e3\n0,1,2,3\n", format::csv).tracks[0].keys[0].kind == rep::euler);
+    const auto m = read("frame,m00,m01,m02,m10,m11,m12,m20,m21,m22\n5,1,0,0,0,1,0,0,0,1\n", format::csv);
+    CHECK(m.tracks[0].keys[0].kind == rep::matrix);
+    CHECK(*m.tracks[0].keys[0].frame == 5);
+    const auto m4 = read("time,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33\n"
+                         "0,1,0,0,4,0,1,0,5,0,0,1,6,0,0,0,1\n",
+                         format::csv);
+    CHECK(m4.tracks[0].keys[0].kind == rep::matrix4);
+    CHECK(m4.tracks[0].keys[0].values[3] == 4);
+}
+
+TEST_CASE("CSV errors name the line and what was expected") {
+    CHECK(error_of("time,qw,qx,qy,qz\n0,1,0,0,0\n0.5,abc,0,0,0\n", format::csv) ==
+          "in:3: column 'qw': expected a finite number, got 'abc'");
+    CHECK(error_of("time,qw,qx,qy,qz\n0,1,0,0\n", format::csv) == "in:2: expected 5 cells as in the header, got 4");
+    CHECK(error_of("time,qw,qx,qy,qz\n0,nan,0,0,0\n", format::csv).find("in:2: column 'qw'") == 0);
+    CHECK(error_of("time,qw,qx,qy,qz\n0,1e400,0,0,0\n", format::csv).find("got '1e400'") != std::string::npos);
+    CHECK(error_of("time,qw,qx,qy,qz,ax,ay,az,angle\n", format::csv) ==
+          "in:1: columns of two rotation representations (quat and axis-angle): expected one");
+    CHECK(error_of("time,qw,qx,qy\n", format::csv) == "in:1: missing column 'qz': quat needs qw qx qy qz");
+    CHECK(error_of("time,qw,qx,qy,qw\n", format::csv) == "in:1: column 'qw' appears twice: expected each column once");
+    CHECK(error_of("qw,qx,qy,qz\n", format::csv) == "in:1: no time column: expected a 'time' or 'frame' column");
+    CHECK(error_of("time,foo\n", format::csv).find("in:1: no rotation columns") == 0);
+    CHECK(error_of("", format::csv) == "in: empty input: expected a CSV header and keys");
+    CHECK(error_of("time,qw,qx,qy,qz\n", format::csv) == "in: header only: expected at least one key");
+    CHECK(error_of("time,rx,ry,rz,tx,ty,tz\n0,0,0,0,1,,\n", format::csv).find("in:2: columns tx ty tz") == 0);
+    CHECK(error_of("track,time,rx,ry,rz\n\xFF,0,0,0,0\n", format::csv) == "in:2: invalid UTF-8: expected text");
+}
+
+TEST_CASE("JSON: keys, tracks, quaternion order and objects, document fields") {
+    const auto doc = read(R"({"angles": "radians", "euler": "zyx", "quat_order": "xyzw", "keys": [
+        {"time": 0, "quat": [0, 0, 1, 0]},
+        {"time": 1, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}},
+        {"frame": 48, "axis": [0, 0, 1], "angle": 1.5, "translation": [1, 2, 3]},
+        {"time": 3, "rotvec": [0, 1, 0]},
+        {"time": 4, "euler": [1, 2, 3]},
+        {"time": 5, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]})",
+                          format::json);
+    const auto& t = doc.tracks[0];
+    CHECK(t.settings.angles == angle_unit::radians);
+    CHECK(t.settings.euler->name == "zyx");
+    CHECK(t.keys[0].values[0] == 0);  // [0, 0, 1, 0] in xyzw: w = 0, z = 1
+    CHECK(t.keys[0].values[3] == 1);
+    CHECK(t.keys[1].values[0] == 1);
+    CHECK(*t.keys[2].frame == 48);
+    CHECK(t.keys[2].translation->y == 2);
+    CHECK(t.keys[5].kind == rep::matrix);
+    CHECK(t.keys[3].where == "in: keys[3]");
+
+    const auto tracks = read(R"({"tracks": {"hip": {"keys": [{"time": 0, "quat": [1,0,0,0]}]},
+                                            "knee": [{"time": 0, "quat": [1,0,0,0]}]}})",
+                             format::json);
+    CHECK(tracks.named);
+    CHECK(tracks.tracks.size() == 2);
+    CHECK(tracks.tracks[1].name == "knee");
+    CHECK(read(R"([{"time": 0, "quat": [1,0,0,0]}])", format::json).tracks[0].keys.size() == 1);
+    // keyrot's own output: frames with both frame and time, fps as the key rate
+    const auto frames = read(R"({"fps": 30, "frames": [{"frame": 3, "time": 0.1, "quat": [1,0,0,0]}]})", format::json);
+    CHECK(frames.tracks[0].settings.key_fps == 30);
+}
+
+TEST_CASE("JSON errors name the key path and what was expected") {
+    CHECK(error_of(R"({"tracks": {"hip": {"keys": [{"time": 0, "quat": [1,0,0,0]}, {"time": 1, "quat": [1,0,0]}]}}})",
+                   format::json) == "in: tracks.hip.keys[1]: 'quat': expected an array of 4 numbers, got 3 elements");
+    CHECK(error_of(R"({"keys": [{"time": "0", "quat": [1,0,0,0]}]})", format::json) ==
+          "in: keys[0]: 'time': expected a number, got string \"0\"");
+    CHECK(error_of(R"({"keys": [{"time": 0, "quat": [1,0,0,0], "rotvec": [0,0,0]}]})", format::json).find("more than one rotation") !=
+          std::string::npos);
+    CHECK(error_of(R"({"keys": [{"time": 0, "frame": 0, "quat": [1,0,0,0]}]})", format::json) ==
+          "in: keys[0]: a key has both 'time' and 'frame': expected exactly one");
+    CHECK(error_of(R"({"keys": [{"quat": [1,0,0,0]}]})", format::json) == "in: keys[0]: expected a 'time' or a 'frame'");
+    CHECK(error_of("{\"keys\": [\n{\"time\": 0,", format::json).find("in:2: invalid JSON") == 0);
+    CHECK(error_of(std::string(100, '[') + std::string(100, ']'), format::json).find("nested deeper") != std::string::npos);
+    CHECK(error_of(R"({"keys": [{"time": 0, "matrix": [[1,0,0],[0,1,0]]}]})", format::json).find("expected 3 or 4 rows") !=
+          std::string::npos);
+    CHECK(error_of(R"({"euler": "XXY", "keys": []})", format::json).find("'euler': expected a sequence") != std::string::npos);
+    CHECK(error_of(R"({"tracks": []})", format::json).find("expected an object of named tracks") != std::string::npos);
+    CHECK(error_of("42", format::json) == "in: expected a JSON object or array, got number");
+}
+
+TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
+    const auto doc = read("{\"track\": \"a\", \"time\": 0, \"quat\": [1,0,0,0]}\n\n"
+                          "{\"track\": \"b\", \"time\": 0, \"rotvec\": [0,0,1]}\n",
+                          format::ndjson);
+    CHECK(doc.named);
+    CHECK(doc.tracks.size() == 2);
+    CHECK(doc.tracks[1].keys[0].where == "in:3");
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1}\n", format::ndjson).find("in:2: no rotation") == 0);
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{oops\n", format::ndjson).find("in:2: invalid JSON") == 0);
+}
+
+TEST_CASE("writers: CSV, JSON and NDJSON tables") {
+    const double s = std::sqrt(0.5);
+    const std::vector<sample> rows = {{0, 0.0, quat{}, vec3{1, 2, 3}}, {0.5, 12.0, quat{s, 0, 0, s}, vec3{0, 0, -1}}};
+    table_info info;
+    info.translation = true;
+    info.fps = 24;
+    info.how = method::slerp;
+    write_options w;
+    w.representation = rep::quat;
+    w.precision = 4;
+    CHECK(write(format::csv, info, w, rows) ==
+          "frame,time,qw,qx,qy,qz,tx,ty,tz\n0,0,1,0,0,0,1,2,3\n12,0.5,0.7071,0,0,0.7071,0,0,-1\n");
+    CHECK(write(format::json, info, w, rows) ==
+          "{\"fps\": 24, \"method\": \"slerp\", \"rep\": \"quat\", \"angles\": \"degrees\", \"quat_order\": \"wxyz\", "
+          "\"frames\": [\n"
+          "{\"frame\": 0, \"time\": 0, \"quat\": [1, 0, 0, 0], \"translation\": [1, 2, 3]},\n"
+          "{\"frame\": 12, \"time\": 0.5, \"quat\": [0.7071, 0, 0, 0.7071], \"translation\": [0, 0, -1]}]}\n");
+    info.named = true;
+    w.representation = rep::axis_angle;
+    CHECK(write(format::ndjson, info, w, rows, "hip") ==
+          "{\"track\": \"hip\", \"frame\": 0, \"time\": 0, \"axis\": [1, 0, 0], \"angle\": 0, \"translation\": [1, 2, 3]}\n"
+          "{\"track\": \"hip\", \"frame\": 12, \"time\": 0.5, \"axis\": [0, 0, 1], \"angle\": 90, \"translation\": [0, 0, -1]}\n");
+    CHECK(write(format::csv, info, w, rows, "a,b").find("\"a,b\",0,0,1,0,0,0,1,2,3\n") != std::string::npos);
+}
+
+TEST_CASE("keyrot reads what it writes, in every format and representation") {
+    keyrot::test::random_rotations rng(77);
+    std::vector<sample> rows;
+    for (int i = 0; i < 5; ++i) rows.push_back({i / 24.0, static_cast<double>(i), rng.next(), vec3{0.5 * i, 1, 2}});
+    table_info info;
+    info.translation = true;
+    info.fps = 24;
+    for (format f : {format::csv, format::json, format::ndjson}) {
+        for (auto name : rep_names) {
+            write_options w;
+            w.representation = *parse_rep(name);
+            w.euler = parse_euler_seq("yxz");
+            CAPTURE(to_string(f));
+            CAPTURE(name);
+            const std::string text = write(f, info, w, rows);
+            std::ostringstream err;
+            warnings warn(err, "in");
+            read_options o;
+            o.source = "in";
+            o.settings.euler = w.euler;
+            const raw_document doc = read_document(text, f, o, warn);
+            const track t = make_track(doc.tracks[0], warn);
+            REQUIRE(t.keys.size() == rows.size());
+            for (std::size_t i = 0; i < rows.size(); ++i) {
+                CHECK(keyrot::test::same_rotation(t.keys[i].rotation, rows[i].rotation, 1e-15));
+                CHECK(t.keys[i].time == rows[i].time);
+                CHECK(std::fabs(t.keys[i].translation->x - rows[i].translation->x) <= 1e-15);
+            }
+        }
+    }
+}

@@ -1,0 +1,85 @@
+#include "keyrot/quat.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "helpers.hpp"
+
+using namespace keyrot;
+using keyrot::test::max_diff;
+using keyrot::test::near;
+
+TEST_CASE("Hamilton's product: ij = k, jk = i, ki = j, i^2 = -1") {
+    const quat i{0, 1, 0, 0}, j{0, 0, 1, 0}, k{0, 0, 0, 1};
+    CHECK(max_diff(i * j, k) == 0);
+    CHECK(max_diff(j * k, i) == 0);
+    CHECK(max_diff(k * i, j) == 0);
+    CHECK(max_diff(j * i, -k) == 0);
+    CHECK(max_diff(i * i, quat{-1, 0, 0, 0}) == 0);
+    CHECK(max_diff(i * j * k, quat{-1, 0, 0, 0}) == 0);  // ijk = -1 (seed 003)
+}
+
+TEST_CASE("product agrees with seed 003's expansion and its vector form") {
+    keyrot::test::random_rotations rng(3);
+    for (int n = 0; n < 100; ++n) {
+        const quat p = rng.next(), q = rng.next();
+        CAPTURE(n);
+        const double a = p.w, b = p.x, c = p.y, d = p.z, e = q.w, f = q.x, g = q.y, h = q.z;
+        const quat expanded{a * e - b * f - c * g - d * h, a * f + b * e + c * h - d * g,
+                            a * g - b * h + c * e + d * f, a * h + b * g - c * f + d * e};
+        CHECK(max_diff(p * q, expanded) <= 1e-15);
+        // [a, v][e, w] = [ae - v.w, a w + e v + v x w]
+        const vec3 v{b, c, d}, w{f, g, h};
+        const vec3 vec = (a * w) + (e * v) + cross(v, w);
+        CHECK(max_diff(p * q, quat{a * e - dot(v, w), vec.x, vec.y, vec.z}) <= 1e-15);
+    }
+}
+
+TEST_CASE("conjugate is the inverse of a unit quaternion") {
+    keyrot::test::random_rotations rng(4);
+    const quat q = rng.next();
+    CHECK(max_diff(q * conjugate(q), quat{}) <= 1e-15);
+}
+
+TEST_CASE("rotate: 90 degrees about z takes x to y (active rotation)") {
+    const double s = std::sqrt(0.5);
+    const vec3 r = rotate(quat{s, 0, 0, s}, vec3{1, 0, 0});
+    CHECK(near(r.x, 0, 1e-15));
+    CHECK(near(r.y, 1, 1e-15));
+    CHECK(near(r.z, 0, 1e-15));
+}
+
+TEST_CASE("exp and log are inverse, near identity, near pi and with w < 0") {
+    const vec3 axis{0.48, -0.6, 0.64};  // unit
+    for (double half : {1e-100, 1e-20, 1e-8, 0.3, 1.0, 1.5, 2.0, std::numbers::pi / 2, 3.0, std::numbers::pi - 1e-9}) {
+        CAPTURE(half);
+        const quat q = exp(half * axis);
+        CHECK(near(q.w, std::cos(half), 1e-16));
+        const vec3 l = log(q);
+        CHECK(near(norm(l), half, 4e-16 * std::fmax(half, 1e-300) + 1e-300));
+        CHECK(max_diff(exp(l), q) <= 4e-16);
+    }
+    CHECK(norm(log(quat{})) == 0);
+    // -1: the full turn; the direction is undefined, keyrot picks +x
+    const vec3 l = log(quat{-1, 0, 0, 0});
+    CHECK(l.x == std::numbers::pi);
+}
+
+TEST_CASE("geodesic angle is sign-invariant and zero on itself") {
+    keyrot::test::random_rotations rng(5);
+    const quat a = rng.next(), b = rng.next();
+    CHECK(geodesic_angle(a, a) <= 1e-16);
+    CHECK(geodesic_angle(a, -a) <= 1e-16);
+    CHECK(near(geodesic_angle(a, b), geodesic_angle(-a, b), 1e-15));
+    CHECK(near(geodesic_angle(a, b), geodesic_angle(b, a), 1e-15));
+    // 90 degrees about z from the identity
+    const double s = std::sqrt(0.5);
+    CHECK(near(geodesic_angle(quat{}, quat{s, 0, 0, s}), std::numbers::pi / 2, 1e-15));
+}
+
+TEST_CASE("norm of tiny and huge vectors neither underflows nor overflows") {
+    CHECK(norm(vec3{3e-200, 4e-200, 0}) == doctest::Approx(5e-200).epsilon(1e-15));
+    CHECK(norm(vec3{3e200, 4e200, 0}) == doctest::Approx(5e200).epsilon(1e-15));
+}

@@ -1,0 +1,106 @@
+#include "keyrot/resample.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "helpers.hpp"
+
+using namespace keyrot;
+using keyrot::test::max_diff;
+using keyrot::test::near;
+
+namespace {
+
+std::vector<sample> run(const track& t, resample_options opts = {}) {
+    std::vector<sample> out;
+    resample(t, opts, "test", [&](const sample& s) { out.push_back(s); });
+    return out;
+}
+
+track keys_at(std::initializer_list<std::pair<double, quat>> list) {
+    track t;
+    for (const auto& [time, q] : list) {
+        key k;
+        k.time = time;
+        k.rotation = q;
+        t.keys.push_back(k);
+    }
+    return t;
+}
+
+const double s45 = std::sqrt(0.5);
+
+}  // namespace
+
+TEST_CASE("frames lie on the absolute grid k / fps") {
+    const auto out = run(keys_at({{0, quat{}}, {1, quat{s45, 0, 0, s45}}}));
+    REQUIRE(out.size() == 25);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+        CHECK(*out[k].frame == static_cast<double>(k));
+        CHECK(out[k].time == static_cast<double>(k) / 24);  // never an accumulated sum
+    }
+    // keys off the grid: only the frames inside [0.01, 0.5]
+    const auto inside = run(keys_at({{0.01, quat{}}, {0.5, quat{}}}));
+    CHECK(*inside.front().frame == 1);
+    CHECK(*inside.back().frame == 12);
+    // a single key on the grid is one frame; off the grid, none
+    CHECK(run(keys_at({{0.5, quat{}}})).size() == 1);
+    CHECK(run(keys_at({{0.51, quat{}}})).empty());
+}
+
+TEST_CASE("a key within 1e-9 frame of the grid is on it") {
+    const double t0 = 1.0 / 3.0 + 1e-12;  // frame 8 at 24 fps, a hair late
+    const auto out = run(keys_at({{t0, quat{}}, {1, quat{}}}));
+    CHECK(*out.front().frame == 8);
+}
+
+TEST_CASE("at a key time the output is that key, bit for bit") {
+    keyrot::test::random_rotations rng(8);
+    const quat a = rng.next(), b = rng.next(), c = rng.next();
+    for (method m : {method::slerp, method::nlerp, method::squad, method::step}) {
+        CAPTURE(to_string(m));
+        const auto out = run(keys_at({{0, a}, {0.5, b}, {1.25, c}}), {24, m, path::direct});
+        CHECK(out.size() == 31);
+        // the output may be the key or its negation (sign continuity); never another value
+        auto is_key = [](quat got, quat want) { return max_diff(got, want) == 0 || max_diff(got, -want) == 0; };
+        CHECK(is_key(out[0].rotation, a));
+        CHECK(is_key(out[12].rotation, b));
+        CHECK(is_key(out[30].rotation, c));
+    }
+}
+
+TEST_CASE("quaternion output is sign-continuous") {
+    keyrot::test::random_rotations rng(12);
+    track t;
+    for (int i = 0; i < 8; ++i) {
+        key k;
+        k.time = i * 0.3;
+        k.rotation = rng.next();
+        t.keys.push_back(k);
+    }
+    for (path p : {path::shortest, path::direct}) {
+        const auto out = run(t, {30, method::slerp, p});
+        for (std::size_t i = 1; i < out.size(); ++i) CHECK(dot(out[i - 1].rotation, out[i].rotation) >= 0);
+        CHECK(max_diff(out.front().rotation, t.keys.front().rotation) == 0);  // starts with the first key's sign
+    }
+}
+
+TEST_CASE("turntable: a quarter turn a second, at 2 fps, 45 degrees a frame") {
+    track t;
+    for (int i = 0; i <= 4; ++i) {
+        key k;
+        k.time = i;
+        k.rotation = exp(vec3{0, 0, i * std::numbers::pi / 4});
+        t.keys.push_back(k);
+    }
+    const auto out = run(t, {2, method::slerp, path::shortest});
+    REQUIRE(out.size() == 9);
+    for (std::size_t i = 1; i < out.size(); ++i)
+        CHECK(near(geodesic_angle(out[i - 1].rotation, out[i].rotation), std::numbers::pi / 4, 1e-15));
+}
+
+TEST_CASE("an absurd time range is an error, not an endless loop") {
+    CHECK_THROWS_AS(run(keys_at({{0, quat{}}, {1e300, quat{}}})), input_error);
+}

@@ -1,0 +1,111 @@
+#include "keyrot/track.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "helpers.hpp"
+
+using namespace keyrot;
+using keyrot::test::max_diff;
+
+namespace {
+
+raw_key raw(double time, rep kind, std::initializer_list<double> values) {
+    raw_key k;
+    k.where = "t.csv:2";
+    k.time = time;
+    k.kind = kind;
+    std::copy(values.begin(), values.end(), k.values.begin());
+    return k;
+}
+
+std::string error_of(const raw_track& t) {
+    std::ostringstream err;
+    warnings warn(err, "t.csv");
+    try {
+        make_track(t, warn);
+    } catch (const input_error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("every input representation becomes the same unit quaternion") {
+    const double s = std::sqrt(0.5);
+    const quat want{s, 0, 0, s};  // 90 degrees about z
+    raw_track t;
+    t.settings.euler = parse_euler_seq("ZYX");
+    t.keys = {raw(0, rep::quat, {2 * s, 0, 0, 2 * s}),  // norm 2: normalised
+              raw(1, rep::axis_angle, {0, 0, 3, 90}), raw(2, rep::rotvec, {0, 0, 90}),
+              raw(3, rep::euler, {90, 0, 0}), raw(4, rep::matrix, {0, -1, 0, 1, 0, 0, 0, 0, 1}),
+              raw(5, rep::matrix4, {0, -1, 0, 7, 1, 0, 0, 8, 0, 0, 1, 9, 0, 0, 0, 1})};
+    std::ostringstream err;
+    warnings warn(err, "t.csv");
+    const track out = make_track(t, warn);
+    for (const key& k : out.keys) {
+        CAPTURE(k.time);
+        CHECK(max_diff(k.rotation, want) <= 2e-16);
+    }
+    CHECK(out.keys[0].renormalised);
+    CHECK(err.str().find("keyrot: warning: t.csv: quaternion norm 2") == 0);
+    CHECK(out.keys[5].translation->z == 9);
+    CHECK(out.keys[3].euler.has_value());
+}
+
+TEST_CASE("radians and frames") {
+    raw_track t;
+    t.settings.angles = angle_unit::radians;
+    t.settings.key_fps = 30;
+    raw_key k = raw(0, rep::axis_angle, {1, 0, 0, std::numbers::pi});
+    k.time.reset();
+    k.frame = 15;
+    t.keys = {k};
+    std::ostringstream err;
+    warnings warn(err, "x");
+    const track out = make_track(t, warn);
+    CHECK(out.keys[0].time == 0.5);
+    CHECK(*out.keys[0].frame == 15);
+    CHECK(std::fabs(out.keys[0].rotation.x - 1) <= 1e-16);
+}
+
+TEST_CASE("validation errors name the key and what was expected") {
+    raw_track t;
+    t.keys = {raw(0, rep::quat, {0, 0, 0, 0})};
+    CHECK(error_of(t) == "t.csv:2: quaternion is zero: expected a non-zero quaternion");
+    t.keys = {raw(0, rep::axis_angle, {0, 0, 0, 10})};
+    CHECK(error_of(t).find("axis is zero") != std::string::npos);
+    t.keys = {raw(0, rep::axis_angle, {0, 0, 0, 0})};  // zero axis with zero angle: the identity
+    CHECK(error_of(t).empty());
+    t.keys = {raw(0, rep::matrix, {2, 0, 0, 0, 2, 0, 0, 0, 2})};
+    CHECK(error_of(t).find("matrix is not a rotation") != std::string::npos);
+    t.keys = {raw(0, rep::matrix, {1, 0, 0, 0, 1, 0, 0, 0, -1})};
+    CHECK(error_of(t).find("determinant") != std::string::npos);
+    t.keys = {raw(0, rep::matrix, {1, 0.1, 0, 0, 1, 0, 0, 0, 1})};  // sheared
+    CHECK(error_of(t).find("not a rotation") != std::string::npos);
+    t.keys = {raw(0, rep::euler, {1, 2, 3})};
+    CHECK(error_of(t).find("Euler angles need a sequence") != std::string::npos);
+    t.keys = {raw(1, rep::quat, {1, 0, 0, 0}), raw(1, rep::quat, {1, 0, 0, 0})};
+    CHECK(error_of(t).find("not after the previous key") != std::string::npos);
+    t.keys = {raw(1, rep::quat, {1, 0, 0, 0}), raw(0.5, rep::quat, {1, 0, 0, 0})};
+    CHECK(error_of(t).find("strictly increasing") != std::string::npos);
+    t.keys = {};
+    CHECK(error_of(t) == "t.csv: no keys: expected at least one key");
+    raw_key both = raw(0.5, rep::quat, {1, 0, 0, 0});
+    both.frame = 3;  // 3 / 24 s is not 0.5 s
+    t.keys = {both};
+    CHECK(error_of(t).find("disagree") != std::string::npos);
+}
+
+TEST_CASE("--strict makes a non-unit quaternion an error") {
+    raw_track t;
+    t.settings.strict = true;
+    t.keys = {raw(0, rep::quat, {1.01, 0, 0, 0})};
+    CHECK(error_of(t).find("--strict") != std::string::npos);
+    t.keys = {raw(0, rep::quat, {1.0001, 0, 0, 0})};  // within 1e-3: accepted quietly
+    CHECK(error_of(t).empty());
+}
