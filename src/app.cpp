@@ -10,6 +10,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "keyrot/compare.hpp"
+#include "keyrot/describe.hpp"
 #include "keyrot/output.hpp"
 #include "keyrot/resample.hpp"
 
@@ -30,7 +32,11 @@ std::string read_file(const std::string& path) {
     return read_stream(in);
 }
 
-write_options output_settings(const options& o, const std::vector<track>& tracks) {
+key_settings input_settings(const options& o) {
+    return {o.radians ? angle_unit::radians : angle_unit::degrees, o.euler, o.key_fps.value_or(o.fps), o.strict};
+}
+
+write_options output_settings(const options& o, const std::optional<euler_seq>& input_euler) {
     write_options w;
     w.representation = o.representation;
     w.angles = o.out_angles.value_or(o.radians ? angle_unit::radians : angle_unit::degrees);
@@ -38,7 +44,7 @@ write_options output_settings(const options& o, const std::vector<track>& tracks
     w.precision = o.precision;
     if (w.representation == rep::euler) {
         // --out-euler, else the input's sequence (--euler or the document's own).
-        w.euler = o.out_euler ? o.out_euler : tracks.front().euler;
+        w.euler = o.out_euler ? o.out_euler : input_euler;
         if (!w.euler) throw usage_error("--rep euler needs an Euler sequence: expected --out-euler SEQ or --euler SEQ");
     }
     return w;
@@ -50,78 +56,95 @@ bool has_translation(const track& t) {
     return false;
 }
 
-/// Reads one input document and returns the text of its output.
-std::string process(const options& o, std::string_view text, format in_fmt, format out_fmt, warnings& warn) {
+/// An input file (or stdin) read, parsed and validated.
+struct input {
+    std::string name;  ///< as given on the command line; "-" for stdin
+    std::string source;
+    format fmt = format::csv;
+    bool named = false;
+    std::vector<track> tracks;
+};
+
+input load(const options& o, const std::string& name, std::istream& in, warnings& warn) {
+    const bool from_stdin = name == "-";
+    const std::string text = from_stdin ? read_stream(in) : read_file(name);
+    input result{name, warn.source(), format::csv, false, {}};
+    result.fmt = o.from ? *o.from : format_of_path(name).value_or(sniff_format(text));
     read_options ro;
     ro.source = warn.source();
-    ro.settings = {o.radians ? angle_unit::radians : angle_unit::degrees, o.euler, o.key_fps.value_or(o.fps), o.strict};
+    ro.settings = input_settings(o);
     ro.order = o.order;
-    const raw_document doc = read_document(text, in_fmt, ro, warn);
-    std::vector<track> tracks;
-    tracks.reserve(doc.tracks.size());
-    for (const raw_track& raw : doc.tracks) tracks.push_back(make_track(raw, warn));
+    const raw_document doc = read_document(text, result.fmt, ro, warn);
+    result.named = doc.named;
+    result.tracks.reserve(doc.tracks.size());
+    for (const raw_track& raw : doc.tracks) result.tracks.push_back(make_track(raw, warn));
+    return result;
+}
 
+std::string source_name(const std::string& name) { return name == "-" ? "<stdin>" : name; }
+
+/// resample / convert: one input's output text.
+std::string transform(const options& o, const input& doc, format out_fmt, warnings& warn) {
     table_info info;
     info.named = doc.named;
-    for (const track& t : tracks) info.translation = info.translation || has_translation(t);
+    for (const track& t : doc.tracks) info.translation = info.translation || has_translation(t);
     if (o.cmd == command::resample) {
         info.fps = o.fps;
         info.how = o.how;
     } else {
         info.times = time_columns::as_given;
-        info.rows_name = "keys";
         info.all_frames = true;
-        for (const track& t : tracks)
-            for (const key& k : t.keys) info.all_frames = info.all_frames && k.frame.has_value();
+        info.any_time = false;
+        bool frames = false;  // rows with both a frame and a time: keyrot's own frames
+        for (const track& t : doc.tracks)
+            for (const key& k : t.keys) {
+                info.all_frames = info.all_frames && k.frame.has_value();
+                info.any_time = info.any_time || k.has_time;
+                frames = frames || (k.frame && k.has_time);
+            }
+        info.rows_name = frames ? "frames" : "keys";
     }
-
     std::string out;
-    const auto writer = make_writer(out_fmt, out, info, output_settings(o, tracks), warn);
+    const auto writer = make_writer(out_fmt, out, info, output_settings(o, doc.tracks.front().euler), warn);
     const resample_options ropts{o.fps, o.how, o.way};
-    for (const track& t : tracks) {
+    for (const track& t : doc.tracks) {
         writer->begin_track(t.name, has_translation(t));
         if (o.cmd == command::resample) {
-            resample(t, ropts, warn.source(), [&](const sample& s) { writer->row(s); });
+            resample(t, ropts, doc.source, [&](const sample& s) { writer->row(s); });
         } else {
-            for (const key& k : t.keys) writer->row(sample{k.time, k.frame, k.rotation, k.translation});
+            for (const key& k : t.keys) writer->row(sample{k.time, k.frame, k.rotation, k.translation, k.has_time});
         }
     }
     writer->finish();
     return out;
 }
 
-}  // namespace
-
-int run(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
+int run_transform(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
     const std::vector<std::string> inputs = o.inputs.empty() ? std::vector<std::string>{"-"} : o.inputs;
-    if (inputs.size() > 1 && !o.output_dir)
-        throw usage_error("several input files need --output-dir DIR");
+    if (inputs.size() > 1 && !o.output_dir) throw usage_error("several input files need --output-dir DIR");
     if (o.output_dir && o.output) throw usage_error("-o and --output-dir: expected one of them");
     if (o.output_dir) {
         std::error_code ec;
         std::filesystem::create_directories(*o.output_dir, ec);
         if (ec) throw error(fmt::format("cannot create directory '{}': {}", *o.output_dir, ec.message()));
     }
-
     int status = 0;
-    for (const std::string& input : inputs) {
+    for (const std::string& name : inputs) {
         try {
-            const bool from_stdin = input == "-";
-            if (from_stdin && o.output_dir) throw usage_error("standard input ('-') cannot be used with --output-dir");
-            const std::string text = from_stdin ? read_stream(in) : read_file(input);
-            warnings warn(err, from_stdin ? "<stdin>" : input);
-            const format in_fmt = o.from ? *o.from : format_of_path(input).value_or(sniff_format(text));
+            if (name == "-" && o.output_dir) throw usage_error("standard input ('-') cannot be used with --output-dir");
+            warnings warn(err, source_name(name));
+            const input doc = load(o, name, in, warn);
             std::optional<std::string> target;
-            format out_fmt = o.to.value_or(in_fmt);
+            format out_fmt = o.to.value_or(doc.fmt);
             if (o.output_dir) {
-                std::filesystem::path name = std::filesystem::path(input).filename();
-                name.replace_extension(to_string(out_fmt));
-                target = (std::filesystem::path(*o.output_dir) / name).string();
+                std::filesystem::path file = std::filesystem::path(name).filename();
+                file.replace_extension(to_string(out_fmt));
+                target = (std::filesystem::path(*o.output_dir) / file).string();
             } else if (o.output && *o.output != "-") {
                 target = *o.output;
-                if (!o.to) out_fmt = format_of_path(*target).value_or(in_fmt);
+                if (!o.to) out_fmt = format_of_path(*target).value_or(doc.fmt);
             }
-            const std::string result = process(o, text, in_fmt, out_fmt, warn);
+            const std::string result = transform(o, doc, out_fmt, warn);
             if (target) {
                 write_file_atomically(*target, result);
             } else {
@@ -136,6 +159,250 @@ int run(const options& o, std::istream& in, std::ostream& out, std::ostream& err
         }
     }
     return status;
+}
+
+/// Writes `text` to -o FILE (atomically) or to `out`.
+void emit(const options& o, const std::string& text, std::ostream& out) {
+    if (o.output && *o.output != "-") write_file_atomically(*o.output, text);
+    else out << text << std::flush;
+}
+
+// ---------------------------------------------------------------- slerp
+
+/// A slerp operand ("0,0,0.7071,0.7071") as a key at `time`.
+raw_key operand(const char* name, const std::string& text, const options& o, double time) {
+    raw_key k;
+    k.where = name;
+    k.time = time;
+    k.kind = o.from_rep;
+    const std::size_t want = o.from_rep == rep::rotvec || o.from_rep == rep::euler ? 3 : 4;
+    std::vector<double> values;
+    std::string_view rest = text;
+    while (true) {
+        const auto comma = rest.find(',');
+        const auto v = parse_number(rest.substr(0, comma));
+        if (!v) break;
+        values.push_back(*v);
+        if (comma == std::string_view::npos) break;
+        rest.remove_prefix(comma + 1);
+        if (values.size() > want) break;
+    }
+    const bool complete = values.size() == want && (rest.find(',') == std::string_view::npos);
+    if (!complete) {
+        const char* what = o.from_rep == rep::quat         ? (o.order == quat_order::wxyz ? "w,x,y,z" : "x,y,z,w")
+                           : o.from_rep == rep::axis_angle ? "ax,ay,az,angle"
+                           : o.from_rep == rep::rotvec     ? "rx,ry,rz"
+                                                           : "e1,e2,e3";
+        throw usage_error(fmt::format("{}: expected {} comma-separated numbers ({}, --from-rep {}), got '{}'", name, want,
+                                      what, to_string(o.from_rep), text));
+    }
+    if (o.from_rep == rep::quat) {
+        const auto wxyz = from_quat_order({values[0], values[1], values[2], values[3]}, o.order);
+        std::copy(wxyz.begin(), wxyz.end(), k.values.begin());
+    } else {
+        std::copy(values.begin(), values.end(), k.values.begin());
+    }
+    return k;
+}
+
+int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
+    if (o.how == method::squad) throw usage_error("--method squad needs more than two keys: use resample");
+    std::vector<double> ts = o.ts;
+    if (o.steps) {
+        if (*o.steps < 1) throw usage_error(fmt::format("--steps: expected at least 1, got {}", *o.steps));
+        for (int i = 0; i <= *o.steps; ++i) ts.push_back(static_cast<double>(i) / *o.steps);
+    }
+    if (ts.empty()) throw usage_error("slerp needs -t T or --steps N");
+    warnings warn(err, "<command line>");
+    const track t = make_track(raw_track{"", input_settings(o), {operand("Q0", o.q0, o, 0), operand("Q1", o.q1, o, 1)}}, warn);
+    const rotation_curve curve(t, o.how, o.way);
+    table_info info;
+    info.times = time_columns::time_only;
+    info.time_name = "t";
+    info.how = o.how;
+    std::string text;
+    const auto writer = make_writer(o.to.value_or(format::csv), text, info, output_settings(o, t.euler), warn);
+    writer->begin_track("", false);
+    for (double h : ts) {
+        const quat q = h == 0 ? curve.at_key(0) : h == 1 ? curve.at_key(1) : curve.at(0, h);
+        writer->row(sample{h, std::nullopt, q, std::nullopt});
+    }
+    writer->finish();
+    emit(o, text, out);
+    return 0;
+}
+
+// ---------------------------------------------------------------- compare
+
+std::string row_place(const row_difference& r) {
+    std::string place = r.track.empty() ? "" : fmt::format("track {} ", r.track);
+    if (r.frame) return place + fmt::format("frame {} ({} s)", *r.frame, r.time);
+    return place + fmt::format("time {} s", r.time);
+}
+
+std::string summary(const comparison& c) {
+    std::string s = fmt::format("{} rows compared, {} failed", c.rows.size(), c.failed);
+    if (c.worst) {
+        const row_difference& w = c.rows[*c.worst];
+        s += fmt::format("; largest difference {:.6g} deg at {}", *w.angle_deg, row_place(w));
+    }
+    return s;
+}
+
+std::string json_report(const comparison& c, const tolerances& tol) {
+    std::string out = "{";
+    auto number = [&out](double v) { append_number(out, v, std::nullopt); };
+    out += fmt::format("\"rows\": {}, \"failed\": {}, \"tolerance\": ", c.rows.size(), c.failed);
+    number(tol.rotation_deg);
+    out += ", \"tolerance_translation\": ";
+    number(tol.translation);
+    out += ", \"max_difference\": ";
+    if (c.worst) number(*c.rows[*c.worst].angle_deg);
+    else out += "null";
+    out += ", \"entries\": [";
+    for (std::size_t i = 0; i < c.rows.size(); ++i) {
+        const row_difference& r = c.rows[i];
+        out += i ? ",\n" : "\n";
+        out += "{\"track\": " + json_quote(r.track) + ", \"frame\": ";
+        if (r.frame) number(*r.frame);
+        else out += "null";
+        out += ", \"time\": ";
+        number(r.time);
+        out += ", \"difference\": ";
+        if (r.angle_deg) number(*r.angle_deg);
+        else out += "null";
+        if (r.translation) out += ", \"translation_difference\": ", number(*r.translation);
+        out += fmt::format(", \"pass\": {}", r.pass() ? "true" : "false");
+        if (!r.pass()) out += ", \"reason\": " + json_quote(r.problem);
+        out += '}';
+    }
+    out += "]}\n";
+    return out;
+}
+
+int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
+    if (o.inputs.size() != 2) throw usage_error("compare needs two files: EXPECTED ACTUAL");
+    if (o.inputs[0] == "-" && o.inputs[1] == "-") throw usage_error("compare: only one of EXPECTED and ACTUAL can be '-'");
+    warnings warn_e(err, source_name(o.inputs[0])), warn_a(err, source_name(o.inputs[1]));
+    const input expected = load(o, o.inputs[0], in, warn_e);
+    const input actual = load(o, o.inputs[1], in, warn_a);
+    const tolerances tol{o.tol_deg, o.tol_translation};
+    const comparison c = compare_tracks(expected.tracks, actual.tracks, tol);
+
+    constexpr std::size_t max_reasons = 10;
+    std::size_t told = 0;
+    for (const row_difference& r : c.rows) {
+        if (r.pass()) continue;
+        if (told++ < max_reasons) err << "keyrot: " << actual.source << ": " << row_place(r) << ": " << r.problem << '\n';
+    }
+    if (told > max_reasons) err << "keyrot: " << actual.source << ": " << told - max_reasons << " more rows failed\n";
+    if (o.report_json) {
+        emit(o, json_report(c, tol), out);
+        err << summary(c) << '\n';
+    } else {
+        emit(o, summary(c) + "\n", out);
+    }
+    return c.failed ? 1 : 0;
+}
+
+// ---------------------------------------------------------------- info
+
+std::string index_list(const std::vector<std::size_t>& v) {
+    return v.empty() ? std::string("none") : fmt::format("{}", fmt::join(v, ", "));
+}
+
+std::string rep_list(const std::vector<rep>& reps) {
+    std::vector<std::string_view> names;
+    for (rep r : reps) names.push_back(to_string(r));
+    return fmt::format("{}", fmt::join(names, ", "));
+}
+
+std::string info_text(const input& doc, const std::vector<track_info>& infos, std::optional<int> precision) {
+    auto num = [precision](double v) {
+        std::string s;
+        append_number(s, v, precision.value_or(6));
+        return s;
+    };
+    std::string out = fmt::format("{}: {} track{}, {}\n", doc.source, infos.size(), infos.size() == 1 ? "" : "s",
+                                  to_string(doc.fmt));
+    for (const track_info& t : infos) {
+        out += fmt::format("{}: {} key{}, {} s to {} s, given as {}\n", t.name.empty() ? "track" : "track " + t.name,
+                           t.keys, t.keys == 1 ? "" : "s", num(t.start), num(t.end), rep_list(t.given_as));
+        std::vector<std::size_t> long_way;
+        for (std::size_t i = 0; i < t.segments.size(); ++i) {
+            const segment_info& s = t.segments[i];
+            if (i == 0) out += "  segment  angle (deg)  speed (deg/s)\n";
+            out += fmt::format("  {:<7}  {:<11}  {}{}\n", fmt::format("{}-{}", i, i + 1), num(s.angle_deg),
+                               num(s.speed_deg_s), s.direct_long_way ? "  (long way with --path direct)" : "");
+            if (s.direct_long_way) long_way.push_back(i);
+        }
+        out += fmt::format("  keys flipped by --path shortest: {}\n", index_list(t.flipped));
+        out += fmt::format("  keys renormalised: {}\n", index_list(t.renormalised));
+        out += fmt::format("  Euler keys within {} deg of gimbal lock: {}\n", near_gimbal_deg, index_list(t.near_gimbal));
+    }
+    return out;
+}
+
+std::string info_json(const input& doc, const std::vector<track_info>& infos) {
+    auto num = [](double v) {
+        std::string s;
+        append_number(s, v, std::nullopt);
+        return s;
+    };
+    auto list = [](const std::vector<std::size_t>& v) { return fmt::format("[{}]", fmt::join(v, ", ")); };
+    std::string out = "{\"source\": " + json_quote(doc.source) + ", \"format\": \"" +
+                      std::string(to_string(doc.fmt)) + "\", \"tracks\": [";
+    for (std::size_t n = 0; n < infos.size(); ++n) {
+        const track_info& t = infos[n];
+        std::vector<std::string> reps, segments;
+        for (rep r : t.given_as) reps.push_back(fmt::format("\"{}\"", to_string(r)));
+        for (const segment_info& s : t.segments)
+            segments.push_back(fmt::format("{{\"angle\": {}, \"speed\": {}, \"direct_long_way\": {}}}", num(s.angle_deg),
+                                           num(s.speed_deg_s), s.direct_long_way));
+        out += fmt::format(
+            "{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}], \"segments\": [{}], "
+            "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}}}",
+            n ? "," : "", json_quote(t.name), t.keys, num(t.start), num(t.end), fmt::join(reps, ", "),
+            fmt::join(segments, ", "), list(t.flipped), list(t.renormalised), list(t.near_gimbal));
+    }
+    out += "]}\n";
+    return out;
+}
+
+int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
+    const std::vector<std::string> inputs = o.inputs.empty() ? std::vector<std::string>{"-"} : o.inputs;
+    const bool as_json = o.to == format::json || o.to == format::ndjson;
+    std::string text;
+    int status = 0;
+    for (const std::string& name : inputs) {
+        try {
+            warnings warn(err, source_name(name));
+            const input doc = load(o, name, in, warn);
+            std::vector<track_info> infos;
+            for (const track& t : doc.tracks) infos.push_back(describe(t));
+            text += as_json ? info_json(doc, infos) : info_text(doc, infos, o.precision);
+        } catch (const usage_error&) {
+            throw;
+        } catch (const error& e) {
+            err << "keyrot: " << e.what() << '\n';
+            status = 2;
+        }
+    }
+    emit(o, text, out);
+    return status;
+}
+
+}  // namespace
+
+int run(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
+    switch (o.cmd) {
+        case command::resample:
+        case command::convert: return run_transform(o, in, out, err);
+        case command::slerp: return run_slerp(o, out, err);
+        case command::compare: return run_compare(o, in, out, err);
+        case command::info: return run_info(o, in, out, err);
+    }
+    return 2;
 }
 
 }  // namespace keyrot

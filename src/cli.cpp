@@ -12,7 +12,7 @@ namespace {
 /// The flag values as CLI11 fills them, before they become typed options.
 struct raw_flags {
     std::string from, to, rep = "axis-angle", euler, out_euler, quat_order = "wxyz", method = "slerp",
-                        path = "shortest";
+                        path = "shortest", from_rep = "quat", report;
     bool out_degrees = false, out_radians = false;
     int precision = -1;
     double key_fps = 0;
@@ -23,12 +23,17 @@ std::vector<std::string> names(const std::array<std::string_view, N>& list) {
     return {list.begin(), list.end()};
 }
 
-void add_common(CLI::App& sub, options& o, raw_flags& f) {
-    sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
-    sub.add_option("-o,--output", o.output, "output file (default: standard output)");
-    sub.add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
+/// Flags for reading keys (every command but slerp).
+void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--from", f.from, "input format (default: by extension, else sniffed)")
         ->check(CLI::IsMember({"csv", "json", "ndjson"}));
+    sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
+    sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
+}
+
+/// Flags for writing rotations, and the angle and quaternion conventions.
+void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("-o,--output", o.output, "output file (default: standard output)");
     sub.add_option("--to", f.to, "output format (default: extension of -o, else the input format)")
         ->check(CLI::IsMember({"csv", "json", "ndjson"}));
     sub.add_option("--rep", f.rep, "output representation")->check(CLI::IsMember(names(rep_names)));
@@ -41,12 +46,9 @@ void add_common(CLI::App& sub, options& o, raw_flags& f) {
     auto* rad = sub.add_flag("--out-radians", f.out_radians, "output angles in radians");
     deg->excludes(rad);
     sub.add_option("--precision", f.precision, "digits after the decimal point (default: shortest round trip)");
-    sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
-    sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
 }
 
-void add_resample_flags(CLI::App& sub, options& o, raw_flags& f) {
-    sub.add_option("--fps", o.fps, "output frame rate (default 24)");
+void add_method_flags(CLI::App& sub, raw_flags& f) {
     sub.add_option("--method", f.method, "interpolation method")->check(CLI::IsMember(names(method_names)));
     sub.add_option("--path", f.path, "shortest: consecutive keys in one hemisphere; direct: signs as given")
         ->check(CLI::IsMember(names(path_names)));
@@ -78,6 +80,8 @@ void finish(options& o, const raw_flags& f) {
             throw usage_error(fmt::format("--precision: expected 0 to 17 digits, got {}", f.precision));
         o.precision = f.precision;
     }
+    o.from_rep = *parse_rep(f.from_rep);
+    o.report_json = f.report == "json";
     o.how = *parse_method(f.method);
     o.way = *parse_path(f.path);
     check_rate("--fps", o.fps);
@@ -97,8 +101,31 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
     raw_flags f;
     CLI::App* resample = app.add_subcommand("resample", "resample keyframes on the frame grid");
     CLI::App* convert = app.add_subcommand("convert", "rewrite keys in another representation, no resampling");
-    for (CLI::App* sub : {resample, convert}) add_common(*sub, o, f);
-    add_resample_flags(*resample, o, f);
+    CLI::App* slerp = app.add_subcommand("slerp", "interpolate between two rotations (worked examples, homework)");
+    CLI::App* compare = app.add_subcommand("compare", "grade an answer: per-frame rotation difference");
+    CLI::App* info = app.add_subcommand("info", "describe a track: keys, duration, per-segment angles, warnings");
+
+    for (CLI::App* sub : {resample, convert, info}) sub->add_option("files", o.inputs, "input files ('-' or none: standard input)");
+    resample->add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
+    convert->add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
+    for (CLI::App* sub : {resample, convert, compare, info}) add_input_flags(*sub, o, f);
+    for (CLI::App* sub : {resample, convert, slerp, compare, info}) add_output_flags(*sub, o, f);
+    resample->add_option("--fps", o.fps, "output frame rate (default 24)");
+    add_method_flags(*resample, f);
+
+    slerp->add_option("Q0", o.q0, "first rotation, comma-separated (see --from-rep)")->required();
+    slerp->add_option("Q1", o.q1, "second rotation")->required();
+    slerp->add_option("-t", o.ts, "interpolation parameter; may repeat");
+    slerp->add_option("--steps", o.steps, "sample t = 0, 1/N, ..., 1");
+    slerp->add_option("--from-rep", f.from_rep, "what Q0 and Q1 are: quat (in --quat-order), axis-angle "
+                                                "(ax,ay,az,angle), rotvec, euler (needs --euler)")
+        ->check(CLI::IsMember({"quat", "axis-angle", "rotvec", "euler"}));
+    add_method_flags(*slerp, f);
+
+    compare->add_option("EXPECTED", o.inputs, "the key: expected rotations")->expected(2)->required();
+    compare->add_option("--tol", o.tol_deg, "largest rotation difference in degrees (default 0.01)");
+    compare->add_option("--tol-translation", o.tol_translation, "largest translation difference (default 0.001)");
+    compare->add_option("--report", f.report, "json: a JSON report on standard output")->check(CLI::IsMember({"json"}));
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -113,8 +140,16 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
     } catch (const CLI::ParseError& e) {
         throw usage_error(fmt::format("{} (see keyrot --help)", e.what()));
     }
-    o.cmd = resample->parsed() ? command::resample : command::convert;
+    o.cmd = resample->parsed()  ? command::resample
+            : convert->parsed() ? command::convert
+            : slerp->parsed()   ? command::slerp
+            : compare->parsed() ? command::compare
+                                : command::info;
     finish(o, f);
+    if (o.cmd == command::compare)
+        for (double tol : {o.tol_deg, o.tol_translation})
+            if (!(std::isfinite(tol) && tol >= 0))
+                throw usage_error(fmt::format("--tol: expected a tolerance of 0 or more, got {}", tol));
     return o;
 }
 

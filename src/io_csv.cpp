@@ -213,7 +213,7 @@ public:
     csv_writer(std::string& out, const table_info& info, const write_options& opts, warnings& warn)
         : out_(out), info_(info), opts_(opts), warn_(warn) {
         frame_ = info.times == time_columns::frame_and_time || (info.times == time_columns::as_given && info.all_frames);
-        time_ = info.times != time_columns::as_given || !info.all_frames;
+        time_ = info.times != time_columns::as_given || !info.all_frames || info.any_time;
         translation_ = info.translation && opts.representation != rep::matrix4;
         std::vector<std::string_view> header;
         if (info.named) header.push_back("track");

@@ -281,8 +281,6 @@ raw_document read_ndjson(std::string_view text, const read_options& opts, warnin
 
 namespace {
 
-std::string quoted(const std::string& name) { return json(name).dump(); }
-
 class json_writer final : public table_writer {
 public:
     json_writer(std::string& out, const table_info& info, const write_options& opts, warnings& warn, bool lines)
@@ -300,7 +298,7 @@ public:
     }
 
     void begin_track(const std::string& name, bool has_translation) override {
-        name_ = quoted(name);
+        name_ = json_quote(name);
         translation_ = has_translation && opts_.representation != rep::matrix4;
         if (lines_) return;
         if (tracks_++) out_ += "]}";
@@ -316,7 +314,7 @@ public:
         if (lines_ && info_.named) fmt::format_to(std::back_inserter(out_), "\"track\": {}, ", name_);
         const bool with_frame = s.frame && info_.times != time_columns::time_only;
         if (with_frame) out_ += "\"frame\": ", append_number(out_, *s.frame, std::nullopt);
-        if (!with_frame || info_.times == time_columns::frame_and_time) {
+        if (!with_frame || s.has_time) {
             fmt::format_to(std::back_inserter(out_), "{}\"{}\": ", with_frame ? ", " : "", info_.time_name);
             append_number(out_, s.time, opts_.precision);
         }
@@ -380,6 +378,14 @@ private:
 };
 
 }  // namespace
+
+std::string json_quote(std::string_view text) {
+    try {
+        return json(text).dump();
+    } catch (const json::type_error&) {
+        throw input_error(fmt::format("\"{}\"", text.substr(0, 40)), "invalid UTF-8: expected text");
+    }
+}
 
 std::unique_ptr<table_writer> make_json_writer(std::string& out, const table_info& info, const write_options& opts,
                                                warnings& warn, bool lines) {

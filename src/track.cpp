@@ -69,14 +69,12 @@ key convert_key(const raw_key& k, const key_settings& s, warnings& warn) {
     key out;
     out.given_as = k.kind;
     out.translation = k.translation;
+    // A row with both is a frame of keyrot's own output, at whatever rate it
+    // was made: its time times it, its frame is kept as a label (compare
+    // matches by it).
     out.frame = k.frame;
-    out.time = k.frame ? *k.frame / s.key_fps : *k.time;
-    // A row with both (keyrot's own resample output) is timed by its frame,
-    // which is exact; the time must be the same instant to within half a frame.
-    if (k.frame && k.time && !(std::fabs(*k.time * s.key_fps - *k.frame) <= 0.5))
-        throw input_error(k.where, fmt::format("time {} s and frame {} disagree at {} fps: expected one of them, "
-                                               "or both for the same instant (see --key-fps)",
-                                               *k.time, *k.frame, s.key_fps));
+    out.has_time = k.time.has_value();
+    out.time = k.time ? *k.time : *k.frame / s.key_fps;
     const auto& v = k.values;
     switch (k.kind) {
         case rep::quat: out.rotation = unit_quaternion(k, s, warn, out.renormalised); break;

@@ -85,8 +85,10 @@ TEST_CASE("resample output chains into convert, in every format") {
         REQUIRE(first.status == 0);
         const result second = run_with(parse({"convert", "--to", "csv", "--rep", "axis-angle", "--precision", "9"}), first.out);
         CHECK(second.status == 0);
-        // frame 24 = 1 s is the last key; matrix4 carried a zero translation along
-        CHECK(second.out.find("\n24,0,0,1,90,0,0,0\n") != std::string::npos);
+        // frame 24 = 1 s is the last key; both time columns and matrix4's
+        // zero translation come along
+        CHECK(second.out.rfind("frame,time,ax,ay,az,angle,tx,ty,tz\n", 0) == 0);
+        CHECK(second.out.find("\n24,1,0,0,1,90,0,0,0\n") != std::string::npos);
     }
 }
 

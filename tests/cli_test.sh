@@ -107,6 +107,84 @@ expect "batch status" 2 "" -- bash -c "exit $?"
 expect "batch files" 0 "turntable.json
 walk.json" -- ls "$work/out"
 
+# ---- slerp: the seeds' worked examples
+expect "seed 000 slerp" 0 "t,qx,qy,qz,qw
+0.5,0,0,0.3827,0.9239" -- \
+    "$keyrot" slerp --quat-order xyzw 0,0,0,1 0,0,0.7071067811865476,0.7071067811865476 -t 0.5 --rep quat --precision 4
+# seed 003's route: axis-angle in, (q r^-1)^a r, axis-angle out. Halfway between
+# 90 about x and 90 about y is 2 acos(sqrt(2/3)) = 70.52877936550931 about (1,1,0)/sqrt 2.
+expect "seed 003 route" 0 "t,ax,ay,az,angle
+0.5,0.707106781187,0.707106781187,0,70.528779365509" -- \
+    "$keyrot" slerp --from-rep axis-angle 1,0,0,90 0,1,0,90 -t 0.5 --precision 12
+# seed 000's -170 -> 160 about z: the short way through 180, or the long way through 0
+expect "short way" 0 "t,ax,ay,az,angle
+0,0,0,-1,170
+0.5,0,0,1,175
+1,0,0,1,160" -- "$keyrot" slerp --from-rep axis-angle 0,0,1,-170 0,0,1,160 --steps 2 --precision 6
+expect "long way" 0 "t,ax,ay,az,angle
+0,0,0,-1,170
+0.5,0,0,-1,5
+1,0,0,1,160" -- "$keyrot" slerp --from-rep axis-angle 0,0,1,-170 0,0,1,160 --steps 2 --path direct --precision 6
+# a quarter of the way to 180 degrees about z is 45
+expect "slerp json" 0 '{"method": "slerp", "rep": "rotvec", "angles": "degrees", "frames": [
+{"t": 0, "rotvec": [0, 0, 0]},
+{"t": 0.25, "rotvec": [0, 0, 45]}]}' -- "$keyrot" slerp 1,0,0,0 0,0,0,1 -t 0 -t 0.25 --rep rotvec --to json --precision 9
+expect_error "slerp needs t" "keyrot: slerp needs -t T or --steps N" -- "$keyrot" slerp 1,0,0,0 0,0,0,1
+expect_error "slerp steps 0" "keyrot: --steps: expected at least 1, got 0" -- "$keyrot" slerp 1,0,0,0 0,0,0,1 --steps 0
+expect_error "slerp operand" "keyrot: Q1: expected 4 comma-separated numbers (w,x,y,z, --from-rep quat), got '0,0,1'" -- \
+    "$keyrot" slerp 1,0,0,0 0,0,1 -t 0.5
+expect_error "slerp zero" "keyrot: Q0: quaternion is zero: expected a non-zero quaternion" -- \
+    "$keyrot" slerp 0,0,0,0 0,0,0,1 -t 0.5
+
+# ---- the teaching example: Euler-linear goes the long way, slerp the short
+expect "z turn euler" 0 "frame,time,e1,e2,e3
+0,0,-170,0,0
+1,0.25,-87.5,0,0
+2,0.5,-5,0,0
+3,0.75,77.5,0,0
+4,1,160,0,0" -- "$keyrot" resample "$data/z_turn.json" --fps 4 --method euler --rep euler --precision 2 --to csv
+expect "z turn slerp" 0 "frame,time,e1,e2,e3
+0,0,-170,0,0
+1,0.25,-177.5,0,0
+2,0.5,175,0,0
+3,0.75,167.5,0,0
+4,1,160,0,0" -- "$keyrot" resample "$data/z_turn.json" --fps 4 --rep euler --precision 2 --to csv
+
+# ---- compare: a key at 4 fps and answers in other representations
+"$keyrot" resample "$data/homework.json" --fps 4 --to csv -o "$work/key.csv"
+"$keyrot" convert "$work/key.csv" --rep matrix -o "$work/matrix.csv"
+"$keyrot" convert "$work/key.csv" --rep quat --to json -o "$work/quat.json"
+sed -E 's/"quat": \[([^,]+), ([^,]+), ([^,]+), ([^]]+)\]/"quat": [-\1, -\2, -\3, -\4]/' "$work/quat.json" | sed 's/--//g' > "$work/negated.json"
+"$keyrot" convert "$work/key.csv" --rep axis-angle --precision 17 | awk -F, -v OFS=, 'NR==4{$6=$6+0.5}{print}' > "$work/off.csv"
+grep -v '^3,' "$work/key.csv" > "$work/missing.csv"
+printf 'frame,time,qw,qx,qy,qz\n0,0,1,0,0,0\n1,0.25,x,0,0,0\n' > "$work/malformed.csv"
+expect "compare exact in matrices" 0 "5 rows compared, 0 failed; largest difference 0 deg at frame 0 (0 s)" -- \
+    "$keyrot" compare "$work/key.csv" "$work/matrix.csv"
+expect "compare negated" 0 "5 rows compared, 0 failed; largest difference 0 deg at frame 0 (0 s)" -- \
+    "$keyrot" compare "$work/key.csv" "$work/negated.json"
+expect "compare 0.5 off" 1 "5 rows compared, 1 failed; largest difference 0.5 deg at frame 2 (0.5 s)" -- \
+    "$keyrot" compare "$work/key.csv" "$work/off.csv"
+expect "compare 0.5 off reason" 1 "keyrot: $work/off.csv: frame 2 (0.5 s): rotation differs by 0.5 deg (tolerance 0.01)" -- \
+    bash -c "'$keyrot' compare '$work/key.csv' '$work/off.csv' 2>&1 >/dev/null"
+expect "compare tol 1" 0 "5 rows compared, 0 failed; largest difference 0.5 deg at frame 2 (0.5 s)" -- \
+    "$keyrot" compare "$work/key.csv" "$work/off.csv" --tol 1
+expect "compare missing row" 1 "5 rows compared, 1 failed; largest difference 0 deg at frame 0 (0 s)" -- \
+    "$keyrot" compare "$work/key.csv" "$work/missing.csv"
+expect_error "compare malformed" "keyrot: $work/malformed.csv:3: column 'qw': expected a finite number, got 'x'" -- \
+    "$keyrot" compare "$work/key.csv" "$work/malformed.csv"
+expect "compare json" 1 '{"rows": 5, "failed": 1, "max_difference": 0.5}' -- bash -c \
+    "'$keyrot' compare '$work/key.csv' '$work/off.csv' --report json 2>/dev/null | /usr/bin/env python3 -c 'import json,sys; d=json.load(sys.stdin); print(json.dumps({\"rows\": d[\"rows\"], \"failed\": d[\"failed\"], \"max_difference\": round(d[\"max_difference\"], 9)})); sys.exit(1 if d[\"failed\"] else 0)'"
+expect "grader loop" 0 "$work/matrix.csv ok
+$work/negated.json ok" -- bash -c "for f in '$work/matrix.csv' '$work/negated.json' '$work/off.csv'; do '$keyrot' compare '$work/key.csv' \"\$f\" >/dev/null 2>&1 && echo \"\$f ok\"; done; true"
+
+# ---- info
+expect "info nlerp speed" 0 "  0-1      15.63        125.07
+  3-4      23.69        189.56" -- bash -c \
+    "'$keyrot' resample '$data/wide_turn.csv' --fps 8 --method nlerp | '$keyrot' info --precision 2 | grep -E '^  (0-1|3-4) '"
+expect "info flips" 0 "  0-1      90           180  (long way with --path direct)
+  keys flipped by --path shortest: 1" -- bash -c \
+    "printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n0.5,-0.7071067811865476,0,0,-0.7071067811865476\n' | '$keyrot' info | grep -E '0-1|flipped'"
+
 expect "help" 0 "0" -- bash -c "'$keyrot' --help >/dev/null; echo \$?"
 expect "version" 0 "keyrot 0.1.0" -- "$keyrot" --version
 

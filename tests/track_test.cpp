@@ -95,10 +95,18 @@ TEST_CASE("validation errors name the key and what was expected") {
     CHECK(error_of(t).find("strictly increasing") != std::string::npos);
     t.keys = {};
     CHECK(error_of(t) == "t.csv: no keys: expected at least one key");
-    raw_key both = raw(0.5, rep::quat, {1, 0, 0, 0});
-    both.frame = 3;  // 3 / 24 s is not 0.5 s
+}
+
+TEST_CASE("a frame of keyrot's output, made at any rate, is timed by its time") {
+    raw_track t;
+    raw_key both = raw(0.25, rep::quat, {1, 0, 0, 0});
+    both.frame = 1;  // made at 4 fps; the key rate is 24
     t.keys = {both};
-    CHECK(error_of(t).find("disagree") != std::string::npos);
+    std::ostringstream err;
+    warnings warn(err, "x");
+    const track out = make_track(t, warn);
+    CHECK(out.keys[0].time == 0.25);
+    CHECK(*out.keys[0].frame == 1);
 }
 
 TEST_CASE("--strict makes a non-unit quaternion an error") {

@@ -13,7 +13,7 @@
 
 namespace keyrot {
 
-enum class command { resample, convert };
+enum class command { resample, convert, slerp, compare, info };
 
 struct options {
     command cmd = command::resample;
@@ -32,11 +32,23 @@ struct options {
     std::optional<double> key_fps;  ///< defaults to fps
     method how = method::slerp;
     path way = path::shortest;
+
+    // slerp
+    std::string q0, q1;            ///< comma-separated operands
+    rep from_rep = rep::quat;      ///< what Q0 and Q1 are
+    std::vector<double> ts;        ///< -t
+    std::optional<int> steps;      ///< --steps N: t = 0, 1/N, ..., 1
+
+    // compare
+    double tol_deg = 0.01;
+    double tol_translation = 0.001;
+    bool report_json = false;
 };
 
 /// Runs one command. Data goes to `out` (unless -o / --output-dir), warnings
 /// and errors to `err` as "keyrot: ..." lines. Returns the exit status:
-/// 0 success, 2 any error. Throws usage_error for a bad combination of flags.
+/// 0 success, 1 compare found differences, 2 any error. Throws usage_error
+/// for a bad combination of flags.
 int run(const options& opts, std::istream& in, std::ostream& out, std::ostream& err);
 
 }  // namespace keyrot

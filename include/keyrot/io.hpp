@@ -41,7 +41,7 @@ raw_document read_document(std::string_view text, format f, const read_options& 
 /// Frame / key time columns of a table.
 enum class time_columns {
     frame_and_time,  ///< resample: both
-    as_given,        ///< convert: JSON writes each key's own; CSV writes `frame` if all keys have one, else `time`
+    as_given,        ///< convert: JSON writes each key's own; CSV `frame` if all keys have one, `time` if any has one
     time_only,       ///< slerp: the parameter, under time_name
 };
 
@@ -51,6 +51,7 @@ struct table_info {
     bool translation = false;  ///< some track has a translation
     time_columns times = time_columns::frame_and_time;
     bool all_frames = false;  ///< as_given: every row has a frame
+    bool any_time = true;     ///< as_given: some row has a time
     std::string_view time_name = "time";
     std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
     std::optional<double> fps;              ///< JSON header fields, when known
@@ -69,6 +70,9 @@ public:
 
 /// A row's rotation values; Euler output warns once about gimbal lock.
 rotation_values row_values(const sample& s, const write_options& opts, warnings& warn);
+
+/// `text` as a JSON string literal, quotes included. Throws input_error for invalid UTF-8.
+std::string json_quote(std::string_view text);
 
 /// Euler output warns once about gimbal lock through `warn`.
 std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,

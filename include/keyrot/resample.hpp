@@ -14,6 +14,7 @@ struct sample {
     std::optional<double> frame;
     quat rotation;
     std::optional<vec3> translation;
+    bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
 };
 
 struct resample_options {

@@ -40,7 +40,8 @@ struct raw_track {
 
 struct key {
     double time = 0;              ///< seconds
-    std::optional<double> frame;  ///< as given, when keyed by frame
+    std::optional<double> frame;  ///< as given (the key's time, unless it also has a time)
+    bool has_time = true;         ///< the input gave a time (not only a frame)
     quat rotation;                ///< unit
     std::optional<vec3> translation;
     rep given_as = rep::quat;

@@ -1,0 +1,38 @@
+#pragma once
+// Grading: match two sets of tracks row by row and measure the differences.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "keyrot/track.hpp"
+
+namespace keyrot {
+
+struct tolerances {
+    double rotation_deg = 0.01;  ///< geodesic angle
+    double translation = 0.001;  ///< Euclidean distance
+};
+
+/// One row of the report: a key of EXPECTED, of ACTUAL, or a matched pair.
+struct row_difference {
+    std::string track;
+    std::optional<double> frame;
+    double time = 0;
+    std::optional<double> angle_deg;    ///< sign-invariant geodesic angle; absent if unmatched
+    std::optional<double> translation;  ///< distance, when EXPECTED has a translation and ACTUAL too
+    std::string problem;                ///< why it failed ("only in ACTUAL", ...); empty if it passed
+    bool pass() const { return problem.empty(); }
+};
+
+struct comparison {
+    std::vector<row_difference> rows;  ///< EXPECTED's order, then ACTUAL's unmatched rows
+    std::size_t failed = 0;
+    std::optional<std::size_t> worst;  ///< index of the largest angle among matched rows
+};
+
+/// Rows are matched by track name and frame when both keys have a frame,
+/// else by track and time (|dt| <= tol::match_time).
+comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual,
+                          const tolerances& tol);
+
+}  // namespace keyrot

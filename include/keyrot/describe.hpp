@@ -1,0 +1,32 @@
+#pragma once
+// What `keyrot info` tells about a track.
+#include <string>
+#include <vector>
+
+#include "keyrot/track.hpp"
+
+namespace keyrot {
+
+struct segment_info {
+    double angle_deg = 0;        ///< rotation from key i to key i+1, the short way
+    double speed_deg_s = 0;      ///< mean angular speed
+    bool direct_long_way = false;  ///< the keys as written lie in opposite hemispheres
+};
+
+struct track_info {
+    std::string name;
+    std::size_t keys = 0;
+    double start = 0, end = 0;           ///< seconds
+    std::vector<rep> given_as;           ///< the representations read, in order of first use
+    std::vector<segment_info> segments;  ///< one per pair of neighbouring keys
+    std::vector<std::size_t> flipped;        ///< keys negated by --path shortest
+    std::vector<std::size_t> renormalised;   ///< keys whose norm was off by > tol::unit_norm
+    std::vector<std::size_t> near_gimbal;    ///< Euler keys within near_gimbal_deg of gimbal lock
+};
+
+/// Euler keys whose middle angle is this close to its singular value are reported.
+inline constexpr double near_gimbal_deg = 1;
+
+track_info describe(const track& t);
+
+}  // namespace keyrot

@@ -1,0 +1,72 @@
+#include "keyrot/compare.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "helpers.hpp"
+
+using namespace keyrot;
+
+namespace {
+
+key at(double time, quat q, std::optional<double> frame = std::nullopt) {
+    key k;
+    k.time = time;
+    k.frame = frame;
+    k.rotation = q;
+    return k;
+}
+
+track named(std::string name, std::vector<key> keys) { return track{std::move(name), std::nullopt, std::move(keys)}; }
+
+}  // namespace
+
+TEST_CASE("q and -q are the same answer") {
+    keyrot::test::random_rotations rng(1);
+    const quat a = rng.next(), b = rng.next();
+    const auto c = compare_tracks({named("", {at(0, a), at(1, b)})}, {named("", {at(0, -a), at(1, -b)})}, {});
+    CHECK(c.failed == 0);
+    CHECK(c.rows.size() == 2);
+    CHECK(*c.rows[*c.worst].angle_deg <= 1e-6);
+}
+
+TEST_CASE("an answer half a degree off at one frame fails there") {
+    const quat off = exp(vec3{0, 0, 0.25 * std::numbers::pi / 180});  // 0.5 degrees about z
+    const auto c = compare_tracks({named("", {at(0, quat{}, 0), at(0.5, quat{}, 12)})},
+                                  {named("", {at(0, quat{}, 0), at(0.5, off, 12)})}, {});
+    CHECK(c.failed == 1);
+    REQUIRE(c.worst);
+    CHECK(*c.rows[*c.worst].frame == 12);
+    CHECK(std::fabs(*c.rows[*c.worst].angle_deg - 0.5) <= 1e-12);
+    CHECK(c.rows[1].problem == "rotation differs by 0.5 deg (tolerance 0.01)");
+    const auto loose = compare_tracks({named("", {at(0.5, quat{}, 12)})}, {named("", {at(0.5, off, 12)})}, {1, 0.001});
+    CHECK(loose.failed == 0);
+}
+
+TEST_CASE("rows are matched by frame when both have one, else by time") {
+    // the frame matches although the times were written with different rounding
+    auto c = compare_tracks({named("", {at(0.041666, quat{}, 1)})}, {named("", {at(0.0417, quat{}, 1)})}, {});
+    CHECK(c.failed == 0);
+    c = compare_tracks({named("", {at(0.5, quat{})})}, {named("", {at(0.5000005, quat{}, 12)})}, {});
+    CHECK(c.failed == 0);  // within 1e-6 s
+    c = compare_tracks({named("", {at(0.5, quat{})})}, {named("", {at(0.50001, quat{})})}, {});
+    CHECK(c.failed == 2);  // one missing from ACTUAL, one only in ACTUAL
+    CHECK(c.rows[0].problem == "missing from ACTUAL");
+    CHECK(c.rows[1].problem == "only in ACTUAL");
+}
+
+TEST_CASE("tracks are matched by name; translations are checked when expected") {
+    key with_t = at(0, quat{});
+    with_t.translation = vec3{1, 2, 3};
+    key close_t = with_t;
+    close_t.translation = vec3{1, 2, 3.0005};
+    key far_t = with_t;
+    far_t.translation = vec3{1, 2, 3.01};
+    CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {close_t})}, {}).failed == 0);
+    CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {far_t})}, {}).failed == 1);
+    CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {at(0, quat{})})}, {}).rows[0].problem ==
+          "translation missing from ACTUAL");
+    CHECK(compare_tracks({named("hip", {with_t})}, {named("knee", {with_t})}, {}).failed == 2);
+}

@@ -1,0 +1,38 @@
+#include "keyrot/describe.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+using namespace keyrot;
+
+TEST_CASE("segments, flips, renormalised and near-gimbal keys") {
+    const double s = std::sqrt(0.5);
+    track t;
+    t.euler = parse_euler_seq("ZYX");
+    auto add = [&t](double time, quat q) {
+        key k;
+        k.time = time;
+        k.rotation = q;
+        t.keys.push_back(k);
+        return &t.keys.back();
+    };
+    add(0, quat{});
+    add(0.5, quat{-s, 0, 0, -s});                 // 90 about z, written in the other hemisphere
+    add(1.5, quat{0, 0, 0, 1})->renormalised = true;  // 180 about z
+    key* e = add(2, from_euler({0.3, std::numbers::pi / 2 - 0.01, 0}, *t.euler));
+    e->euler = std::array<double, 3>{0.3, std::numbers::pi / 2 - 0.01, 0};
+    const track_info info = describe(t);
+    CHECK(info.keys == 4);
+    CHECK(info.start == 0);
+    CHECK(info.end == 2);
+    REQUIRE(info.segments.size() == 3);
+    CHECK(std::fabs(info.segments[0].angle_deg - 90) <= 1e-12);
+    CHECK(std::fabs(info.segments[0].speed_deg_s - 180) <= 1e-12);
+    CHECK(info.segments[0].direct_long_way);
+    CHECK(std::fabs(info.segments[1].angle_deg - 90) <= 1e-12);
+    CHECK(info.flipped == std::vector<std::size_t>{1});
+    CHECK(info.renormalised == std::vector<std::size_t>{2});
+    CHECK(info.near_gimbal == std::vector<std::size_t>{3});  // 0.57 degrees from lock
+}
