@@ -1,5 +1,7 @@
 #include "keyrot/io.hpp"
 
+#include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 
 #include "keyrot/io_csv.hpp"
@@ -26,15 +28,13 @@ std::string_view to_string(format f) noexcept {
 std::optional<format> format_of_path(std::string_view path) {
     const auto dot = path.rfind('.');
     if (dot == std::string_view::npos || path.find('/', dot) != std::string_view::npos) return std::nullopt;
-    std::string ext(path.substr(dot + 1));
-    for (char& c : ext)
-        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    const std::string ext = ascii_lower(path.substr(dot + 1));
     if (ext == "jsonl") return format::ndjson;
     return parse_format(ext);
 }
 
 format sniff_format(std::string_view text) {
-    if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+    text = without_bom(text);
     const auto start = text.find_first_not_of(" \t\r\n");
     if (start == std::string_view::npos) return format::csv;
     if (text[start] == '[') return format::json;
@@ -49,6 +49,12 @@ format sniff_format(std::string_view text) {
     return more || j.contains("time") || j.contains("frame") ? format::ndjson : format::json;
 }
 
+void track_collector::add(const std::string& name, raw_key k) {
+    const auto [it, added] = index_.emplace(name, doc_.tracks.size());
+    if (added) doc_.tracks.push_back(raw_track{name, settings_, {}});
+    doc_.tracks[it->second].keys.push_back(std::move(k));
+}
+
 raw_document read_document(std::string_view text, format f, const read_options& opts, warnings& warn) {
     switch (f) {
         case format::csv: return read_csv(text, opts, warn);
@@ -60,7 +66,8 @@ raw_document read_document(std::string_view text, format f, const read_options& 
 
 rotation_values row_values(const sample& s, const write_options& opts, warnings& warn) {
     const rotation_values r = values_of(s.rotation, s.translation, opts);
-    if (r.gimbal_lock) warn_gimbal_lock(warn, *opts.euler);
+    if (r.gimbal_lock)
+        warn.once("gimbal", fmt::format("gimbal lock in Euler sequence {}: the third angle is set to 0", opts.euler->name));
     return r;
 }
 

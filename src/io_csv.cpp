@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <map>
 
 
 namespace keyrot {
@@ -33,19 +32,6 @@ std::vector<std::string> split_cells(std::string_view line, const std::string& w
     return cells;
 }
 
-std::string_view trim(std::string_view s) {
-    while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-    while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-    return s;
-}
-
-std::string lower(std::string_view s) {
-    std::string out(s);
-    for (char& c : out)
-        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
-    return out;
-}
-
 /// Where each known column is, resolved once from the header.
 struct columns {
     std::size_t count = 0;
@@ -66,7 +52,7 @@ columns parse_header(const std::vector<std::string>& cells, const std::string& w
     cols.count = cells.size();
     std::map<std::string, std::size_t> index;
     for (std::size_t i = 0; i < cells.size(); ++i) {
-        const std::string name = lower(trim(cells[i]));
+        const std::string name = ascii_lower(trim(cells[i]));
         if (name.empty()) throw input_error(where, fmt::format("column {} has no name: expected a column name", i + 1));
         if (!index.emplace(name, i).second)
             throw input_error(where, fmt::format("column '{}' appears twice: expected each column once", name));
@@ -134,25 +120,19 @@ bool empty_cell(const std::vector<std::string>& cells, std::size_t at) { return 
 }  // namespace
 
 raw_document read_csv(std::string_view text, const read_options& opts, warnings& warn) {
-    if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-    raw_document doc;
-    std::map<std::string, std::size_t> track_index;
+    track_collector tracks(opts.settings);
     std::optional<columns> cols;
-    std::size_t line_no = 0;
-    while (!text.empty()) {
-        const std::size_t eol = text.find('\n');
-        std::string_view line = text.substr(0, eol);
-        text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
-        ++line_no;
-        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    line_reader lines(text);
+    std::string_view line;
+    while (lines.next(line)) {
         const std::string_view content = trim(line);
         if (content.empty() || content.front() == '#') continue;
-        const std::string where = fmt::format("{}:{}", opts.source, line_no);
+        const std::string where = fmt::format("{}:{}", opts.source, lines.number());
         if (!is_valid_utf8(line)) throw input_error(where, "invalid UTF-8: expected text");
         const auto cells = split_cells(line, where);
         if (!cols) {
             cols = parse_header(cells, where, warn);
-            doc.named = cols->track.has_value();
+            tracks.document().named = cols->track.has_value();
             continue;
         }
         if (cells.size() != cols->count)
@@ -184,13 +164,11 @@ raw_document read_csv(std::string_view text, const read_options& opts, warnings&
             name = std::string(trim(cells[*cols->track]));
             if (name.empty()) throw input_error(where, "column 'track': expected a track name, got an empty cell");
         }
-        const auto [it, added] = track_index.emplace(name, doc.tracks.size());
-        if (added) doc.tracks.push_back(raw_track{name, opts.settings, {}});
-        doc.tracks[it->second].keys.push_back(std::move(k));
+        tracks.add(name, std::move(k));
     }
     if (!cols) throw input_error(opts.source, "empty input: expected a CSV header and keys");
-    if (doc.tracks.empty()) throw input_error(opts.source, "header only: expected at least one key");
-    return doc;
+    if (tracks.document().tracks.empty()) throw input_error(opts.source, "header only: expected at least one key");
+    return std::move(tracks.document());
 }
 
 namespace {

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <map>
 #include <nlohmann/json.hpp>
 
 namespace keyrot {
@@ -251,32 +250,29 @@ raw_document read_json(std::string_view text, const read_options& opts, warnings
 }
 
 raw_document read_ndjson(std::string_view text, const read_options& opts, warnings&) {
-    raw_document doc;
-    std::map<std::string, std::size_t> index;
-    std::size_t line_no = 0;
-    while (!text.empty()) {
-        const std::size_t eol = text.find('\n');
-        const std::string_view line = text.substr(0, eol);
-        text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
-        ++line_no;
-        if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;
-        const std::string where = fmt::format("{}:{}", opts.source, line_no);
-        const json j = parse(line, opts.source, line_no);
+    track_collector tracks(opts.settings);
+    bool unnamed = false;
+    line_reader lines(text);
+    std::string_view line;
+    while (lines.next(line)) {
+        if (trim(line).empty()) continue;
+        const std::string where = fmt::format("{}:{}", opts.source, lines.number());
+        const json j = parse(line, opts.source, lines.number());
         std::string name;
         if (j.is_object() && j.contains("track")) {
             if (!j.at("track").is_string())
                 throw input_error(where, fmt::format("'track': expected a string, got {}", type_name(j.at("track"))));
             name = j.at("track").get<std::string>();
-            doc.named = true;
+            tracks.document().named = true;
+        } else {
+            unnamed = true;
         }
-        const auto [it, added] = index.emplace(name, doc.tracks.size());
-        if (added) doc.tracks.push_back(raw_track{name, opts.settings, {}});
-        doc.tracks[it->second].keys.push_back(key_reader(j, where, opts.order, true).read());
+        if (tracks.document().named && unnamed)
+            throw input_error(where, "some lines have a 'track' and some do not: expected all or none");
+        tracks.add(name, key_reader(j, where, opts.order, true).read());
     }
-    if (doc.tracks.empty()) throw input_error(opts.source, "empty input: expected one key object per line");
-    if (doc.named && index.count(""))
-        throw input_error(opts.source, "some lines have a 'track' and some do not: expected all or none");
-    return doc;
+    if (tracks.document().tracks.empty()) throw input_error(opts.source, "empty input: expected one key object per line");
+    return std::move(tracks.document());
 }
 
 namespace {

@@ -106,9 +106,6 @@ void append_number(std::string& out, double v, std::optional<int> precision) {
     if (out.compare(start, std::string::npos, "-0") == 0) out.erase(start, 1);  // -0.0001 at 2 digits
 }
 
-void warn_gimbal_lock(warnings& warn, const euler_seq& seq) {
-    warn.once("gimbal", fmt::format("gimbal lock in Euler sequence {}: the third angle is set to 0", seq.name));
-}
 
 }  // namespace keyrot
 
@@ -116,9 +113,37 @@ void warn_gimbal_lock(warnings& warn, const euler_seq& seq) {
 
 namespace keyrot {
 
-std::optional<double> parse_number(std::string_view text) {
+std::string_view trim(std::string_view text) noexcept {
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
     while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+    return text;
+}
+
+std::string ascii_lower(std::string_view text) {
+    std::string out(text);
+    for (char& c : out)
+        if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+    return out;
+}
+
+std::string_view without_bom(std::string_view text) noexcept {
+    return text.substr(0, 3) == "\xEF\xBB\xBF" ? text.substr(3) : text;
+}
+
+line_reader::line_reader(std::string_view text) noexcept : rest_(without_bom(text)) {}
+
+bool line_reader::next(std::string_view& line) noexcept {
+    if (rest_.empty()) return false;
+    const std::size_t eol = rest_.find('\n');
+    line = rest_.substr(0, eol);
+    rest_.remove_prefix(eol == std::string_view::npos ? rest_.size() : eol + 1);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    ++number_;
+    return true;
+}
+
+std::optional<double> parse_number(std::string_view text) {
+    text = trim(text);
     if (!text.empty() && text.front() == '+') text.remove_prefix(1);
     if (text.empty() || text.front() == '+' || text.front() == ' ') return std::nullopt;
     double v = 0;

@@ -1,6 +1,7 @@
 #pragma once
 // The file formats and what is common to their readers and writers: the
 // document a reader returns and the row-by-row writer interface.
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -33,6 +34,20 @@ struct read_options {
 struct raw_document {
     std::vector<raw_track> tracks;  ///< in order of first appearance
     bool named = false;             ///< the input had a track column / tracks object
+};
+
+/// Groups the keys of a line-based format (CSV, NDJSON) into tracks by
+/// name, in order of first appearance.
+class track_collector {
+public:
+    explicit track_collector(key_settings settings) : settings_(std::move(settings)) {}
+    void add(const std::string& name, raw_key k);
+    raw_document& document() noexcept { return doc_; }
+
+private:
+    key_settings settings_;
+    raw_document doc_;
+    std::map<std::string, std::size_t> index_;
 };
 
 /// Warnings (unknown columns, say) go to `warn`.

@@ -48,8 +48,6 @@ rotation_values values_of(quat q, const std::optional<vec3>& translation, const 
 /// rounded to `precision` decimals without trailing zeros. Never "-0".
 void append_number(std::string& out, double v, std::optional<int> precision);
 
-/// The gimbal-lock warning, once per output.
-void warn_gimbal_lock(warnings& warn, const euler_seq& seq);
 
 }  // namespace keyrot
 
@@ -62,5 +60,26 @@ std::optional<double> parse_number(std::string_view text);
 
 /// True if `text` is well-formed UTF-8 (no overlong forms, no surrogates).
 bool is_valid_utf8(std::string_view text) noexcept;
+
+/// `text` without a leading UTF-8 byte-order mark.
+std::string_view without_bom(std::string_view text) noexcept;
+/// `text` without leading and trailing spaces and tabs.
+std::string_view trim(std::string_view text) noexcept;
+/// `text` with ASCII letters in lower case.
+std::string ascii_lower(std::string_view text);
+
+/// Splits text into lines for the line-based readers: '\n' ends a line, a
+/// '\r' before it is dropped, and a UTF-8 byte-order mark at the start is skipped.
+class line_reader {
+public:
+    explicit line_reader(std::string_view text) noexcept;
+    /// The next line, or false at the end. number() is its 1-based number.
+    bool next(std::string_view& line) noexcept;
+    std::size_t number() const noexcept { return number_; }
+
+private:
+    std::string_view rest_;
+    std::size_t number_ = 0;
+};
 
 }  // namespace keyrot
