@@ -9,7 +9,6 @@
 #include <string_view>
 
 #include "keyrot/convert.hpp"
-#include "keyrot/error.hpp"
 #include "keyrot/quat.hpp"
 
 namespace keyrot {
