@@ -104,7 +104,19 @@ quat from_axis_angle(vec3 axis, double angle, angle_unit unit) noexcept {
 quat from_rotvec(vec3 rotvec, angle_unit unit) noexcept {
     const double angle = norm(rotvec);
     if (angle == 0) return {};
-    return from_axis_angle(rotvec, angle, unit);
+    const sin_cos half = sincos(angle / 2, unit);
+    // The length was rounded to a double: turn on by the rest, |v| - angle =
+    // (|v|^2 - angle^2) / (|v| + angle), so that near 180 degrees (where an
+    // ulp of the angle is 4e-16) the half angle is not off by that rounding;
+    // and form the components in extended precision, rounding each once.
+    long double d = 0;
+    if (angle > 1e-150) {
+        const double rest = dot2({rotvec.x, rotvec.y, rotvec.z, angle}, {rotvec.x, rotvec.y, rotvec.z, -angle}) / (2 * angle);
+        d = to_radians(rest, unit) / 2;
+    }
+    const long double s = (half.sin + half.cos * d) / angle;
+    return {static_cast<double>(half.cos - half.sin * d), static_cast<double>(s * rotvec.x),
+            static_cast<double>(s * rotvec.y), static_cast<double>(s * rotvec.z)};
 }
 
 namespace {
@@ -117,6 +129,12 @@ quat elementary(int axis, double angle, angle_unit unit) noexcept {
 }
 
 double component(quat q, int axis) noexcept { return axis == 0 ? q.x : axis == 1 ? q.y : q.z; }
+
+/// a b - c d with one rounding error (Kahan's algorithm with fma).
+double difference_of_products(double a, double b, double c, double d) noexcept {
+    const double cd = c * d;
+    return std::fma(a, b, -cd) - std::fma(c, d, -cd);
+}
 
 double wrap_pi(double a) noexcept {
     if (a < -std::numbers::pi) return a + 2 * std::numbers::pi;
@@ -207,7 +225,15 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
     // computed directly so that tiny distances keep their precision.
     const double from_zero = 2 * std::atan2(cd, ab);
     const double from_pi = 2 * std::atan2(ab, cd);
-    ang[1] = from_zero;
+    if (proper) {
+        ang[1] = from_zero;
+    } else {
+        // The paper's 2 atan2(cd, ab) - pi/2 cancels for a small middle angle.
+        // With tan(x - pi/4) = (tan x - 1)/(tan x + 1) and cd^2 - ab^2 =
+        // 4 (w y - x z') exactly, the small angle comes out to full precision.
+        const double diff = 4 * difference_of_products(q.w, component(q, j), component(q, i), component(q, k) * sign);
+        ang[1] = 2 * std::atan2(diff, (cd + ab) * (cd + ab));
+    }
     const double half_sum = std::atan2(b, a);
     const double half_diff = std::atan2(d, c);
     if (from_zero <= tol::gimbal_lock) {
@@ -222,20 +248,22 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
         ang[static_cast<std::size_t>(first)] = half_sum - half_diff;
         ang[static_cast<std::size_t>(third)] = half_sum + half_diff;
     }
-    if (!proper) {
-        ang[static_cast<std::size_t>(third)] *= sign;
-        ang[1] -= std::numbers::pi / 2;
-    }
+    if (!proper) ang[static_cast<std::size_t>(third)] *= sign;
     for (double& x : ang) x = wrap_pi(x) + 0.0;  // + 0.0 turns -0 into 0
     return out;
 }
 
 mat3 to_matrix(quat q) noexcept {
+    // The homogeneous form (entries over |q|^2) is exact for a quaternion
+    // whose norm is a rounding error away from 1, and each entry is summed
+    // in twice the precision: no 1 - 2(y^2 + z^2) cancellation near 180 degrees.
     const double w = q.w, x = q.x, y = q.y, z = q.z;
+    const double s = 1 / dot2({w, x, y, z}, {w, x, y, z});
+    const double d = 2 * s;
     mat3 r;
-    r.m[0] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)};
-    r.m[1] = {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)};
-    r.m[2] = {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)};
+    r.m[0] = {s * dot2({w, x, -y, -z}, {w, x, y, z}), d * dot2({x, -z}, {y, w}), d * dot2({x, y}, {z, w})};
+    r.m[1] = {d * dot2({x, z}, {y, w}), s * dot2({w, -x, y, -z}, {w, x, y, z}), d * dot2({y, -x}, {z, w})};
+    r.m[2] = {d * dot2({x, -y}, {z, w}), d * dot2({y, x}, {z, w}), s * dot2({w, -x, -y, z}, {w, x, y, z})};
     return r;
 }
 

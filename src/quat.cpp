@@ -15,11 +15,28 @@ double norm(vec3 v) noexcept { return std::hypot(v.x, v.y, v.z); }
 
 quat operator-(quat q) noexcept { return {-q.w, -q.x, -q.y, -q.z}; }
 
+template <std::size_t N>
+double dot2(const double (&x)[N], const double (&y)[N]) noexcept {
+    double sum = 0, err = 0;
+    for (std::size_t i = 0; i < N; ++i) {
+        const double p = x[i] * y[i];
+        const double p_err = std::fma(x[i], y[i], -p);
+        const double t = sum + p;
+        const double z = t - sum;
+        err += (sum - (t - z)) + (p - z) + p_err;
+        sum = t;
+    }
+    return sum + err;
+}
+template double dot2<2>(const double (&)[2], const double (&)[2]) noexcept;
+template double dot2<3>(const double (&)[3], const double (&)[3]) noexcept;
+template double dot2<4>(const double (&)[4], const double (&)[4]) noexcept;
+
 quat operator*(quat a, quat b) noexcept {
-    return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z,
-            a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-            a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-            a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+    return {dot2({a.w, -a.x, -a.y, -a.z}, {b.w, b.x, b.y, b.z}),
+            dot2({a.w, a.x, a.y, -a.z}, {b.x, b.w, b.z, b.y}),
+            dot2({a.w, -a.x, a.y, a.z}, {b.y, b.z, b.w, b.x}),
+            dot2({a.w, a.x, -a.y, a.z}, {b.z, b.y, b.x, b.w})};
 }
 
 double dot(quat a, quat b) noexcept { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }

@@ -21,9 +21,25 @@ std::string_view to_string(method m) noexcept;
 std::optional<path> parse_path(std::string_view name);
 std::string_view to_string(path p) noexcept;
 
-/// Spherical linear interpolation, constant angular speed, no sign flip
-/// (a and b as given, so b = -a turns a full 360 degrees; the axis is then
-/// a's local x). Exact at h = 0 and h = 1. slerp(1, 90deg@z, 0.5) = 45deg@z.
+/// Spherical linear interpolation from a to b, prepared once per pair of
+/// keys: Szeliski's Algorithm 2.1 with the relative rotation's axis and
+/// angle lifted out of the per-frame loop, the angle kept to twice the
+/// working precision so that the result is within about 2x of correctly
+/// rounded even on the long way round.
+class slerp_segment {
+public:
+    slerp_segment(quat a, quat b) noexcept;
+    /// Constant angular speed, no sign flip (a and b as given, so b = -a
+    /// turns a full 360 degrees, about a's local x). Exact at h = 0 and 1.
+    quat at(double h) const noexcept;
+
+private:
+    quat a_, b_;
+    long double axis_x_ = 1, axis_y_ = 0, axis_z_ = 0;  // of conjugate(a) * b
+    double half_ = 0, half_lo_ = 0;                     // its half angle, as hi + lo
+};
+
+/// slerp_segment(a, b).at(h). slerp(1, 90deg@z, 0.5) = 45deg@z.
 quat slerp(quat a, quat b, double h) noexcept;
 /// Lerp of the components, normalised (seed 000, "method 1"). If the lerp
 /// is zero (b = -a, h = 1/2) the rotation is a's.
@@ -48,6 +64,7 @@ private:
     method method_;
     std::optional<euler_seq> seq_;
     std::vector<quat> q_;                        // keys, hemisphere-aligned for --path shortest
+    std::vector<slerp_segment> slerps_;          // slerp: q_i to q_i+1; squad: that, then s_i to s_i+1
     std::vector<quat> s_;                        // squad control points
     std::vector<std::array<double, 3>> euler_;  // Euler angles per key, for --method euler
 };

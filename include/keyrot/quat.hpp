@@ -33,10 +33,21 @@ double norm(vec3 v) noexcept;
 
 // quat arithmetic
 quat operator-(quat q) noexcept;
-quat operator*(quat a, quat b) noexcept;  ///< Hamilton product: a*b applies b first
+/// Hamilton product: a*b applies b first. Each component is summed in twice
+/// the working precision and rounded once, so conjugate(a) * b stays accurate
+/// when a and b are nearly equal or nearly opposite, where a plain sum cancels.
+quat operator*(quat a, quat b) noexcept;
 double dot(quat a, quat b) noexcept;
 double norm(quat q) noexcept;
 quat conjugate(quat q) noexcept;  ///< the inverse, for a unit quaternion
+
+/// x0 y0 + ... + x(n-1) y(n-1) as if computed in twice the precision and
+/// rounded once (Ogita, Rump and Oishi's Dot2: error-free products and sums).
+template <std::size_t N>
+double dot2(const double (&x)[N], const double (&y)[N]) noexcept;
+extern template double dot2<2>(const double (&)[2], const double (&)[2]) noexcept;
+extern template double dot2<3>(const double (&)[3], const double (&)[3]) noexcept;
+extern template double dot2<4>(const double (&)[4], const double (&)[4]) noexcept;
 vec3 vector_part(quat q) noexcept;
 
 /// q / |q|. Precondition: q is finite and non-zero.

@@ -12,6 +12,11 @@ inline constexpr double grid_frames = 1e-9;
 /// Setting the third angle to 0 there moves the rotation by at most about
 /// this much, so it is kept at the size of a rounding error.
 inline constexpr double gimbal_lock = 4e-16;
+/// Keys q0, q1 with q0^-1 q1 = (w < 0, v) and |v| below this are opposite:
+/// slerp between them (--path direct) is a full turn about q0's local x.
+/// The compensated product fixes v only to about 1e-32, so below this the
+/// direction of v, the axis of the turn, would be rounding noise.
+inline constexpr double opposite_keys = 1e-15;
 /// |dt| in seconds under which compare matches rows by time.
 inline constexpr double match_time = 1e-6;
 
