@@ -106,7 +106,10 @@ std::string transform(const options& o, const input& doc, format out_fmt, warnin
     }
     std::string out;
     const auto writer = make_writer(out_fmt, out, info, output_settings(o, doc.tracks.front().euler), warn);
-    const resample_options ropts{o.fps, o.how, o.way};
+    resample_options ropts;
+    ropts.fps = o.fps;
+    ropts.how = o.how;
+    ropts.way = o.way;
     for (const track& t : doc.tracks) {
         writer->begin_track(t.name, has_translation(t));
         if (o.cmd == command::resample) {
@@ -154,7 +157,7 @@ int run_transform(const options& o, std::istream& in, std::ostream& out, std::os
         } catch (const usage_error&) {
             throw;
         } catch (const error& e) {
-            err << "keyrot: " << e.what() << '\n';
+            print_error(err, e.what());
             status = 2;
         }
     }
@@ -293,9 +296,9 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
     std::size_t told = 0;
     for (const row_difference& r : c.rows) {
         if (r.pass()) continue;
-        if (told++ < max_reasons) err << "keyrot: " << actual.source << ": " << row_place(r) << ": " << r.problem << '\n';
+        if (told++ < max_reasons) print_error(err, actual.source + ": " + row_place(r) + ": " + r.problem);
     }
-    if (told > max_reasons) err << "keyrot: " << actual.source << ": " << told - max_reasons << " more rows failed\n";
+    if (told > max_reasons) print_error(err, fmt::format("{}: {} more rows failed", actual.source, told - max_reasons));
     if (o.report_json) {
         emit(o, json_report(c, tol), out);
         err << summary(c) << '\n';
@@ -384,7 +387,7 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
         } catch (const usage_error&) {
             throw;
         } catch (const error& e) {
-            err << "keyrot: " << e.what() << '\n';
+            print_error(err, e.what());
             status = 2;
         }
     }

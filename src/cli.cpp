@@ -14,8 +14,8 @@ struct raw_flags {
     std::string from, to, rep = "axis-angle", euler, out_euler, quat_order = "wxyz", method = "slerp",
                         path = "shortest", from_rep = "quat", report;
     bool out_degrees = false, out_radians = false;
-    int precision = -1;
-    double key_fps = 0;
+    std::optional<int> precision;
+    std::optional<double> key_fps;
 };
 
 template <std::size_t N>
@@ -75,9 +75,9 @@ void finish(options& o, const raw_flags& f) {
     o.order = *parse_quat_order(f.quat_order);
     if (f.out_degrees) o.out_angles = angle_unit::degrees;
     if (f.out_radians) o.out_angles = angle_unit::radians;
-    if (f.precision != -1) {
-        if (f.precision < 0 || f.precision > 17)
-            throw usage_error(fmt::format("--precision: expected 0 to 17 digits, got {}", f.precision));
+    if (f.precision) {
+        if (*f.precision < 0 || *f.precision > 17)
+            throw usage_error(fmt::format("--precision: expected 0 to 17 digits, got {}", *f.precision));
         o.precision = f.precision;
     }
     o.from_rep = *parse_rep(f.from_rep);
@@ -85,8 +85,8 @@ void finish(options& o, const raw_flags& f) {
     o.how = *parse_method(f.method);
     o.way = *parse_path(f.path);
     check_rate("--fps", o.fps);
-    if (f.key_fps != 0) {
-        check_rate("--key-fps", f.key_fps);
+    if (f.key_fps) {
+        check_rate("--key-fps", *f.key_fps);
         o.key_fps = f.key_fps;
     }
 }

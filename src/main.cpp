@@ -1,4 +1,5 @@
 // keyrot's entry point: parse the command line, run, map errors to status 2.
+#include <csignal>
 #include <iostream>
 
 #include "keyrot/app.hpp"
@@ -6,14 +7,17 @@
 #include "keyrot/error.hpp"
 
 int main(int argc, char** argv) {
+    // A closed pipe (keyrot ... | head) ends keyrot quietly, as it does any
+    // Unix filter, even if the parent process ignored SIGPIPE.
+    std::signal(SIGPIPE, SIG_DFL);
     try {
         const auto opts = keyrot::parse_command_line(argc, argv, std::cout);
         if (!opts) return 0;
         return keyrot::run(*opts, std::cin, std::cout, std::cerr);
     } catch (const keyrot::error& e) {
-        std::cerr << "keyrot: " << e.what() << '\n';
+        keyrot::print_error(std::cerr, e.what());
     } catch (const std::exception& e) {
-        std::cerr << "keyrot: internal error: " << e.what() << '\n';
+        keyrot::print_error(std::cerr, std::string("internal error: ") + e.what());
     }
     return 2;
 }

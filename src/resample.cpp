@@ -16,10 +16,11 @@ void resample(const track& t, const resample_options& opts, const std::string& s
     const double fps = opts.fps;
     const double first = std::ceil(keys.front().time * fps - tol::grid_frames);
     const double last = std::floor(keys.back().time * fps + tol::grid_frames);
-    if (last - first > max_frames)
-        throw input_error(source, fmt::format("{}keys span {} frames at {} fps: expected at most {}",
+    if (last - first + 1 > opts.max_frames)
+        throw input_error(source, fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g}",
                                               t.name.empty() ? "" : fmt::format("track '{}': ", t.name),
-                                              last - first, fps, max_frames));
+                                              keys.front().time, keys.back().time, last - first + 1, fps,
+                                              opts.max_frames));
     const double key_tol = tol::grid_frames / fps;  // seconds
     std::size_t i = 0;                              // current segment [i, i + 1]
     quat previous{};

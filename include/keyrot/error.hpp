@@ -26,8 +26,16 @@ struct input_error : error {
 
 #include <ostream>
 #include <set>
+#include <string_view>
 
 namespace keyrot {
+
+/// `text` with control characters and bytes that are not UTF-8 written as
+/// \xNN, so that a message quoting bad input stays one readable line.
+std::string printable(std::string_view text);
+
+/// Prints "keyrot: <message>" as one printable line.
+void print_error(std::ostream& err, std::string_view message);
 
 /// Warnings for one input source, each kind printed at most once
 /// ("one warning per file") as "keyrot: warning: <source>: <message>".

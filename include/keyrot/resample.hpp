@@ -21,6 +21,9 @@ struct resample_options {
     double fps = 24;
     method how = method::slerp;
     path way = path::shortest;
+    /// At most this many frames per track (116 hours at 24 fps), so that a
+    /// typo in a time fails at once instead of writing for hours.
+    double max_frames = 1e7;
 };
 
 /// Calls emit for each frame k (ascending) with first key time <= k/fps <=
@@ -28,11 +31,8 @@ struct resample_options {
 /// computed afresh for each frame, never accumulated. At a key time the
 /// rotation is that key's; quaternion signs are continuous from frame to
 /// frame, starting from the first key's sign.
-/// Throws input_error when the range holds more than max_frames frames.
+/// Throws input_error when the range holds more than opts.max_frames frames.
 void resample(const track& t, const resample_options& opts, const std::string& source,
               const std::function<void(const sample&)>& emit);
-
-/// Upper bound on frames per track, so a typo in a time cannot ask for 1e300 frames.
-inline constexpr double max_frames = 1e10;
 
 }  // namespace keyrot

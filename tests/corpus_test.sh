@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# The bad-input corpus (tests/bad: NAME, or NAME.args alone for a command
+# line, with NAME.err the one line keyrot must print) and the good corpus
+# (tests/good: variants keyrot must accept quietly), plus inputs too large to
+# check in and the output-safety cases.
+# Usage: corpus_test.sh KEYROT TESTS_DIR
+set -u
+keyrot=$(realpath "$1")
+tests=$(realpath "$2")
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+passed=0
+failed=0
+fail() {
+    failed=$((failed + 1))
+    printf 'FAIL %s\n' "$*"
+}
+
+# check NAME WANT_LINE -- COMMAND...: status 2, no output, exactly WANT_LINE on stderr
+check() {
+    local name=$1 want=$2
+    shift 3
+    local out rc
+    out=$("$@" 2>"$work/err")
+    rc=$?
+    local err
+    err=$(cat "$work/err")
+    if [[ $rc == 2 && -z $out && $err == "$want" && $(wc -l <"$work/err") == 1 ]]; then
+        passed=$((passed + 1))
+    else
+        fail "$name: status $rc, stdout [${out:0:80}], stderr [$err], want [$want]"
+    fi
+}
+
+cd "$tests/bad" || exit 1
+for expected in *.err; do
+    name=${expected%.err}
+    if [[ -e $name ]]; then
+        check "$name" "$(cat "$expected")" -- "$keyrot" resample "$name"
+    else
+        # shellcheck disable=SC2046
+        check "$name" "$(cat "$expected")" -- "$keyrot" $(cat "$name.args")
+    fi
+done
+
+# The same inputs on standard input name <stdin>.
+check "stdin" "keyrot: <stdin>:3: column 'qw': expected a finite number, got 'one'" -- \
+    bash -c "'$keyrot' resample < not_a_number.csv"
+
+# Accepted quietly: every variant resamples to seed 000's example.
+want="frame,time,qw,qx,qy,qz
+0,0,1,0,0,0
+1,0.5,0.92388,0,0,0.382683
+2,1,0.707107,0,0,0.707107"
+cd "$tests/good" || exit 1
+for f in *; do
+    out=$("$keyrot" resample "$f" --fps 2 --rep quat --precision 6 --to csv 2>"$work/err")
+    rc=$?
+    if [[ $rc == 0 && $out == "$want" && ! -s $work/err ]]; then
+        passed=$((passed + 1))
+    else
+        fail "good $f: status $rc, stderr [$(cat "$work/err")], stdout [$out]"
+    fi
+done
+
+# A single 100 MB line (generated, not checked in), in CSV and in JSON.
+cd "$work" || exit 1
+{ printf 'time,qw,qx,qy,qz\n0,'; head -c 100000000 /dev/zero | tr '\0' '1'; printf ',0,0,0\n'; } > long_line.csv
+check "100 MB CSV line" "keyrot: long_line.csv:2: column 'qw': expected a finite number, got '1111111111111111111111111111111111111111'" -- \
+    "$keyrot" resample long_line.csv
+{ printf '{"keys": [{"time": 0, "quat": [1, 0, 0, 0], "note": "'; head -c 100000000 /dev/zero | tr '\0' 'x'; printf '"}, {"time": 1, "quat": [1, 0, 0]}]}'; } > long_line.json
+check "100 MB JSON line" "keyrot: long_line.json: keys[1]: 'quat': expected an array of 4 numbers, got 3 elements" -- \
+    "$keyrot" resample long_line.json
+rm -f long_line.csv long_line.json
+
+# Output safety: a directory as the target is one clean error and leaves no temporary file.
+mkdir -p "$work/target.csv"
+check "directory target" "keyrot: cannot write '$work/target.csv': Is a directory" -- \
+    "$keyrot" resample "$tests/../data/turntable.csv" -o "$work/target.csv"
+if [[ -z $(ls -A "$work/target.csv") && -z $(find "$work" -name '*.keyrot-*') ]]; then
+    passed=$((passed + 1))
+else
+    fail "temporary file left behind: $(ls -A "$work")"
+fi
+
+# A closed pipe ends keyrot quietly.
+"$keyrot" resample "$tests/../data/turntable.csv" --fps 100000 2>"$work/pipe.err" | head -n 1 >/dev/null
+if [[ ! -s $work/pipe.err ]]; then
+    passed=$((passed + 1))
+else
+    fail "closed pipe: stderr [$(cat "$work/pipe.err")]"
+fi
+
+echo "$passed passed, $failed failed"
+[[ $failed == 0 ]]
