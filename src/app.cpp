@@ -110,6 +110,7 @@ std::string transform(const options& o, const input& doc, format out_fmt, warnin
     ropts.fps = o.fps;
     ropts.how = o.how;
     ropts.way = o.way;
+    ropts.max_frames = o.max_frames;
     for (const track& t : doc.tracks) {
         writer->begin_track(t.name, has_translation(t));
         if (o.cmd == command::resample) {

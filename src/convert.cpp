@@ -156,18 +156,18 @@ quat from_euler(std::array<double, 3> angles, const euler_seq& seq, angle_unit u
 quat from_matrix(const mat3& mat) noexcept {
     const auto& m = mat.m;
     const double trace = m[0][0] + m[1][1] + m[2][2];
-    int best = 3;  // 0..2: a diagonal element, 3: the trace
+    std::size_t best = 3;  // 0..2: a diagonal element, 3: the trace
     double largest = trace;
-    for (int i = 0; i < 3; ++i)
+    for (std::size_t i = 0; i < 3; ++i)
         if (m[i][i] > largest) largest = m[i][i], best = i;
     std::array<double, 4> v{};  // x, y, z, w
     if (best == 3) {
         v = {m[2][1] - m[1][2], m[0][2] - m[2][0], m[1][0] - m[0][1], 1 + trace};
     } else {
-        const int i = best, j = (i + 1) % 3, k = (j + 1) % 3;
-        v[static_cast<std::size_t>(i)] = 1 - trace + 2 * m[i][i];
-        v[static_cast<std::size_t>(j)] = m[j][i] + m[i][j];
-        v[static_cast<std::size_t>(k)] = m[k][i] + m[i][k];
+        const std::size_t i = best, j = (i + 1) % 3, k = (j + 1) % 3;
+        v[i] = 1 - trace + 2 * m[i][i];
+        v[j] = m[j][i] + m[i][j];
+        v[k] = m[k][i] + m[i][k];
         v[3] = m[k][j] - m[j][k];
     }
     return normalized({v[3], v[0], v[1], v[2]});

@@ -52,6 +52,14 @@ json parse(std::string_view text, std::string_view source, std::size_t first_lin
         if (colon != std::string::npos) what = what.substr(colon + 2);
         throw input_error(fmt::format("{}:{}", source, first_line + line_of(text, e.byte == 0 ? 0 : e.byte - 1) - 1),
                           "invalid JSON: " + what);
+    } catch (const json::out_of_range& e) {
+        // A number too large for a double: "number overflow parsing '1e999'".
+        const std::string what = e.what();
+        const auto quote = what.find('\'');
+        const std::string token = quote == std::string::npos ? "" : what.substr(quote + 1, what.size() - quote - 2);
+        const std::size_t at = token.empty() ? 0 : text.find(token);
+        throw input_error(fmt::format("{}:{}", source, first_line + line_of(text, at == std::string_view::npos ? 0 : at) - 1),
+                          fmt::format("number '{}' is out of range: expected a finite number", token.substr(0, 40)));
     }
 }
 

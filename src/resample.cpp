@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "keyrot/tolerances.hpp"
 
@@ -16,6 +17,13 @@ void resample(const track& t, const resample_options& opts, const std::string& s
     const double fps = opts.fps;
     const double first = std::ceil(keys.front().time * fps - tol::grid_frames);
     const double last = std::floor(keys.back().time * fps + tol::grid_frames);
+    // Frame numbers must be exact integers in a double.
+    constexpr double max_frame_number = 9007199254740992.0;  // 2^53
+    for (const double frame : {first, last})
+        if (std::fabs(frame) >= max_frame_number)
+            throw input_error(source, fmt::format("{}key time {} s is frame {:g} at {} fps: expected frames within +-2^53",
+                                                  t.name.empty() ? "" : fmt::format("track '{}': ", t.name),
+                                                  frame == first ? keys.front().time : keys.back().time, frame, fps));
     if (last - first + 1 > opts.max_frames)
         throw input_error(source, fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g}",
                                               t.name.empty() ? "" : fmt::format("track '{}': ", t.name),
@@ -25,7 +33,9 @@ void resample(const track& t, const resample_options& opts, const std::string& s
     std::size_t i = 0;                              // current segment [i, i + 1]
     quat previous{};
     bool started = false;
-    for (double k = first; k <= last; ++k) {
+    const auto count = static_cast<std::int64_t>(last - first + 1);  // may be 0
+    for (std::int64_t n = 0; n < count; ++n) {
+        const double k = first + static_cast<double>(n);
         sample s;
         s.frame = k;
         s.time = k / fps;

@@ -10,6 +10,7 @@
 #include "keyrot/interpolate.hpp"
 #include "keyrot/io.hpp"
 #include "keyrot/layout.hpp"
+#include "keyrot/resample.hpp"
 
 namespace keyrot {
 
@@ -32,6 +33,7 @@ struct options {
     std::optional<double> key_fps;  ///< defaults to fps
     method how = method::slerp;
     path way = path::shortest;
+    double max_frames = resample_options{}.max_frames;  ///< per track; not a flag (the fuzzer lowers it)
 
     // slerp
     std::string q0, q1;            ///< comma-separated operands

@@ -1,0 +1,37 @@
+// libFuzzer target: a whole command run in-process on a byte buffer. The
+// first byte picks the command and flags, the rest is standard input. Any
+// exception but keyrot::error, a sanitizer report, a message that is not one
+// printable "keyrot: " line, or "nan"/"inf" in the output is a finding.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <sstream>
+
+#include "check.hpp"
+#include "keyrot/app.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    using namespace keyrot;
+    if (size == 0) return 0;
+    const unsigned pick = data[0];
+    options o;
+    static constexpr std::array<command, 4> commands = {command::resample, command::convert, command::info,
+                                                        command::resample};
+    o.cmd = commands[pick & 3u];
+    o.how = static_cast<method>((pick >> 2) % 5);
+    o.way = (pick & 0x20u) ? path::direct : path::shortest;
+    o.representation = static_cast<rep>((pick >> 6) % 6 == 3 && !(pick & 1u) ? 0 : (pick >> 6) % 6);
+    o.euler = parse_euler_seq((pick & 0x10u) ? "zxz" : "YXZ");
+    o.radians = pick & 0x40u;
+    o.fps = (pick & 0x80u) ? 30 : 24;
+    o.precision = (pick & 0x08u) ? std::optional<int>(3) : std::nullopt;
+    o.max_frames = 1e5;  // keeps each run short; the limit itself is tested elsewhere
+    std::istringstream in(std::string(fuzz::text(data + 1, size - 1)));
+    std::ostringstream out, err;
+    try {
+        run(o, in, out, err);
+    } catch (const usage_error&) {
+    }
+    fuzz::check_output(out.str(), err.str());
+    return 0;
+}
