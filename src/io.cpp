@@ -49,7 +49,13 @@ format sniff_format(std::string_view text) {
     return more || j.contains("time") || j.contains("frame") ? format::ndjson : format::json;
 }
 
+void check_track_name(const std::string& name, const std::string& where) {
+    if (has_control_characters(name))
+        throw input_error(where, fmt::format("track name '{}' has control characters: expected printable text", name));
+}
+
 void track_collector::add(const std::string& name, raw_key k) {
+    check_track_name(name, k.where);
     const auto [it, added] = index_.emplace(name, doc_.tracks.size());
     if (added) doc_.tracks.push_back(raw_track{name, settings_, {}});
     doc_.tracks[it->second].keys.push_back(std::move(k));

@@ -247,8 +247,10 @@ raw_document read_json(std::string_view text, const read_options& opts, warnings
             throw input_error(where, fmt::format("'tracks': expected an object of named tracks, got {}", type_name(tracks)));
         if (tracks.empty()) throw input_error(where, "'tracks' is empty: expected at least one track");
         doc.named = true;
-        for (const auto& [name, value] : tracks.items())
+        for (const auto& [name, value] : tracks.items()) {
+            check_track_name(name, where);
             doc.tracks.push_back(read_track(value, name, "tracks." + name, settings, order, opts));
+        }
     } else if (j.is_object() || j.is_array()) {
         doc.tracks.push_back(read_track(j, "", "", settings, order, opts));
     } else {

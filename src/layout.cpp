@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <stdexcept>
 
 namespace keyrot {
 namespace {
@@ -92,6 +93,9 @@ rotation_values values_of(quat q, const std::optional<vec3>& translation, const 
 }
 
 void append_number(std::string& out, double v, std::optional<int> precision) {
+    // Every number keyrot prints passes here: a NaN or infinity would be a
+    // bug upstream, and must stop the output rather than reach it.
+    if (!std::isfinite(v)) throw std::logic_error(fmt::format("non-finite number {} in the output", v));
     if (v == 0) v = 0;  // drops the sign of -0
     if (!precision) {
         fmt::format_to(std::back_inserter(out), "{}", v);
@@ -124,6 +128,12 @@ std::string ascii_lower(std::string_view text) {
     for (char& c : out)
         if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
     return out;
+}
+
+bool has_control_characters(std::string_view text) noexcept {
+    for (char c : text)
+        if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return true;
+    return false;
 }
 
 std::string_view without_bom(std::string_view text) noexcept {

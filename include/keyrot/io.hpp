@@ -36,11 +36,15 @@ struct raw_document {
     bool named = false;             ///< the input had a track column / tracks object
 };
 
+/// Throws input_error for a track name with control characters.
+void check_track_name(const std::string& name, const std::string& where);
+
 /// Groups the keys of a line-based format (CSV, NDJSON) into tracks by
 /// name, in order of first appearance.
 class track_collector {
 public:
     explicit track_collector(key_settings settings) : settings_(std::move(settings)) {}
+    /// Throws input_error (at k.where) for a name with control characters.
     void add(const std::string& name, raw_key k);
     raw_document& document() noexcept { return doc_; }
 

@@ -45,6 +45,7 @@ rotation_values values_of(quat q, const std::optional<vec3>& translation, const 
 
 /// Appends v in the shortest form that reads back to the same double, or
 /// rounded to `precision` decimals without trailing zeros. Never "-0".
+/// Throws std::logic_error for NaN or infinity (a bug, never printed).
 void append_number(std::string& out, double v, std::optional<int> precision);
 
 
@@ -59,6 +60,8 @@ std::optional<double> parse_number(std::string_view text);
 
 /// True if `text` is well-formed UTF-8 (no overlong forms, no surrogates).
 bool is_valid_utf8(std::string_view text) noexcept;
+/// True if `text` has control characters (below 0x20, or 0x7f).
+bool has_control_characters(std::string_view text) noexcept;
 
 /// `text` without a leading UTF-8 byte-order mark.
 std::string_view without_bom(std::string_view text) noexcept;

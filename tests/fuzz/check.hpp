@@ -29,9 +29,10 @@ inline void check_track(const track& t) {
     }
 }
 
-/// No NaN or infinity printed; every stderr line one printable "keyrot: " line.
-inline void check_output(const std::string& out, const std::string& err) {
-    require(out.find("nan") == std::string::npos && out.find("inf") == std::string::npos);
+/// Every stderr line one printable "keyrot: " line. (NaN and infinity cannot
+/// reach the output: the number formatter throws std::logic_error, which
+/// escapes the target and is a finding.)
+inline void check_output(const std::string& err) {
     std::size_t start = 0;
     while (start < err.size()) {
         const std::size_t end = err.find('\n', start);
