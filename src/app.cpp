@@ -114,7 +114,7 @@ std::string transform(const options& o, const input& doc, format out_fmt, warnin
     for (const track& t : doc.tracks) {
         writer->begin_track(t.name, has_translation(t));
         if (o.cmd == command::resample) {
-            resample(t, ropts, doc.source, [&](const sample& s) { writer->row(s); });
+            resample(t, ropts, [&](const sample& s) { writer->row(s); });
         } else {
             for (const key& k : t.keys) writer->row(sample{k.time, k.frame, k.rotation, k.translation, k.has_time});
         }
@@ -218,7 +218,8 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     }
     if (ts.empty()) throw usage_error("slerp needs -t T or --steps N");
     warnings warn(err, "<command line>");
-    const track t = make_track(raw_track{"", input_settings(o), {operand("Q0", o.q0, o, 0), operand("Q1", o.q1, o, 1)}}, warn);
+    const track t = make_track(
+        raw_track{"", "Q0", input_settings(o), {operand("Q0", o.q0, o, 0), operand("Q1", o.q1, o, 1)}}, warn);
     const rotation_curve curve(t, o.how, o.way);
     table_info info;
     info.times = time_columns::time_only;

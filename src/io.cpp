@@ -57,7 +57,7 @@ void check_track_name(const std::string& name, const std::string& where) {
 void track_collector::add(const std::string& name, raw_key k) {
     check_track_name(name, k.where);
     const auto [it, added] = index_.emplace(name, doc_.tracks.size());
-    if (added) doc_.tracks.push_back(raw_track{name, settings_, {}});
+    if (added) doc_.tracks.push_back(raw_track{name, k.where, settings_, {}});
     doc_.tracks[it->second].keys.push_back(std::move(k));
 }
 

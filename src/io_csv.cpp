@@ -122,6 +122,7 @@ bool empty_cell(const std::vector<std::string>& cells, std::size_t at) { return 
 raw_document read_csv(std::string_view text, const read_options& opts, warnings& warn) {
     track_collector tracks(opts.settings);
     std::optional<columns> cols;
+    std::string header_where;
     line_reader lines(text);
     std::string_view line;
     while (lines.next(line)) {
@@ -131,6 +132,7 @@ raw_document read_csv(std::string_view text, const read_options& opts, warnings&
         if (!is_valid_utf8(line)) throw input_error(where, "invalid UTF-8: expected text");
         const auto cells = split_cells(line, where);
         if (!cols) {
+            header_where = where;
             cols = parse_header(cells, where, warn);
             tracks.document().named = cols->track.has_value();
             continue;
@@ -167,7 +169,7 @@ raw_document read_csv(std::string_view text, const read_options& opts, warnings&
         tracks.add(name, std::move(k));
     }
     if (!cols) throw input_error(opts.source, "empty input: expected a CSV header and keys");
-    if (tracks.document().tracks.empty()) throw input_error(opts.source, "header only: expected at least one key");
+    if (tracks.document().tracks.empty()) throw input_error(header_where, "header only: expected at least one key");
     return std::move(tracks.document());
 }
 

@@ -225,7 +225,7 @@ raw_track read_track(const json& j, std::string name, const std::string& path, k
     if (!keys->is_array())
         throw input_error(where, fmt::format("'{}': expected an array of keys, got {}", field.empty() ? name : field,
                                              type_name(*keys)));
-    raw_track t{std::move(name), settings, {}};
+    raw_track t{std::move(name), fmt::format("{}: {}", opts.source, keys_path.empty() ? "document" : keys_path), settings, {}};
     t.keys.reserve(keys->size());
     for (std::size_t i = 0; i < keys->size(); ++i)
         t.keys.push_back(key_reader((*keys)[i], fmt::format("{}: {}[{}]", opts.source, keys_path, i), order, frames_doc).read());

@@ -9,8 +9,7 @@
 
 namespace keyrot {
 
-void resample(const track& t, const resample_options& opts, const std::string& source,
-              const std::function<void(const sample&)>& emit) {
+void resample(const track& t, const resample_options& opts, const std::function<void(const sample&)>& emit) {
     const rotation_curve curve(t, opts.how, opts.way);
     const translation_curve translation(t, opts.how);
     const auto& keys = t.keys;
@@ -19,16 +18,17 @@ void resample(const track& t, const resample_options& opts, const std::string& s
     const double last = std::floor(keys.back().time * fps + tol::grid_frames);
     // Frame numbers must be exact integers in a double.
     constexpr double max_frame_number = 9007199254740992.0;  // 2^53
-    for (const double frame : {first, last})
+    for (const key* k : {&keys.front(), &keys.back()}) {
+        const double frame = k == &keys.front() ? first : last;
         if (std::fabs(frame) >= max_frame_number)
-            throw input_error(source, fmt::format("{}key time {} s is frame {:g} at {} fps: expected frames within +-2^53",
-                                                  t.name.empty() ? "" : fmt::format("track '{}': ", t.name),
-                                                  frame == first ? keys.front().time : keys.back().time, frame, fps));
+            throw input_error(k->where, fmt::format("key time {} s is frame {:g} at {} fps: expected frames within +-2^53",
+                                                    k->time, frame, fps));
+    }
     if (last - first + 1 > opts.max_frames)
-        throw input_error(source, fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g}",
-                                              t.name.empty() ? "" : fmt::format("track '{}': ", t.name),
-                                              keys.front().time, keys.back().time, last - first + 1, fps,
-                                              opts.max_frames));
+        throw input_error(keys.back().where,
+                          fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g}",
+                                      t.name.empty() ? "" : fmt::format("track '{}': ", t.name), keys.front().time,
+                                      keys.back().time, last - first + 1, fps, opts.max_frames));
     const double key_tol = tol::grid_frames / fps;  // seconds
     std::size_t i = 0;                              // current segment [i, i + 1]
     quat previous{};

@@ -67,6 +67,7 @@ quat matrix_rotation(const raw_key& k) {
 
 key convert_key(const raw_key& k, const key_settings& s, warnings& warn) {
     key out;
+    out.where = k.where;
     out.given_as = k.kind;
     out.translation = k.translation;
     // A row with both is a frame of keyrot's own output, at whatever rate it
@@ -107,8 +108,8 @@ key convert_key(const raw_key& k, const key_settings& s, warnings& warn) {
 track make_track(const raw_track& raw, warnings& warn) {
     track t{raw.name, raw.settings.euler, {}};
     if (raw.keys.empty())
-        throw input_error(warn.source(), raw.name.empty() ? std::string("no keys: expected at least one key")
-                                                          : fmt::format("track '{}' has no keys: expected at least one key", raw.name));
+        throw input_error(raw.where, raw.name.empty() ? std::string("no keys: expected at least one key")
+                                                      : fmt::format("track '{}' has no keys: expected at least one key", raw.name));
     t.keys.reserve(raw.keys.size());
     for (const raw_key& rk : raw.keys) {
         key k = convert_key(rk, raw.settings, warn);

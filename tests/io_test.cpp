@@ -105,7 +105,7 @@ TEST_CASE("CSV errors name the line and what was expected") {
     CHECK(error_of("qw,qx,qy,qz\n", format::csv) == "in:1: no time column: expected a 'time' or 'frame' column");
     CHECK(error_of("time,foo\n", format::csv).find("in:1: no rotation columns") == 0);
     CHECK(error_of("", format::csv) == "in: empty input: expected a CSV header and keys");
-    CHECK(error_of("time,qw,qx,qy,qz\n", format::csv) == "in: header only: expected at least one key");
+    CHECK(error_of("# c\ntime,qw,qx,qy,qz\n", format::csv) == "in:2: header only: expected at least one key");
     CHECK(error_of("time,rx,ry,rz,tx,ty,tz\n0,0,0,0,1,,\n", format::csv).find("in:2: columns tx ty tz") == 0);
     CHECK(error_of("track,time,rx,ry,rz\n\xFF,0,0,0,0\n", format::csv) == "in:2: invalid UTF-8: expected text");
 }

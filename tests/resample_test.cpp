@@ -15,7 +15,7 @@ namespace {
 
 std::vector<sample> run(const track& t, resample_options opts = {}) {
     std::vector<sample> out;
-    resample(t, opts, "test", [&](const sample& s) { out.push_back(s); });
+    resample(t, opts, [&](const sample& s) { out.push_back(s); });
     return out;
 }
 

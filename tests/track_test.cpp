@@ -94,7 +94,8 @@ TEST_CASE("validation errors name the key and what was expected") {
     t.keys = {raw(1, rep::quat, {1, 0, 0, 0}), raw(0.5, rep::quat, {1, 0, 0, 0})};
     CHECK(error_of(t).find("strictly increasing") != std::string::npos);
     t.keys = {};
-    CHECK(error_of(t) == "t.csv: no keys: expected at least one key");
+    t.where = "t.json: keys";
+    CHECK(error_of(t) == "t.json: keys: no keys: expected at least one key");
 }
 
 TEST_CASE("a frame of keyrot's output, made at any rate, is timed by its time") {

@@ -31,8 +31,8 @@ struct resample_options {
 /// computed afresh for each frame, never accumulated. At a key time the
 /// rotation is that key's; quaternion signs are continuous from frame to
 /// frame, starting from the first key's sign.
-/// Throws input_error when the range holds more than opts.max_frames frames.
-void resample(const track& t, const resample_options& opts, const std::string& source,
-              const std::function<void(const sample&)>& emit);
+/// Throws input_error (naming the last key) when the range holds more than
+/// opts.max_frames frames or frame numbers beyond 2^53.
+void resample(const track& t, const resample_options& opts, const std::function<void(const sample&)>& emit);
 
 }  // namespace keyrot

@@ -34,11 +34,13 @@ struct key_settings {
 
 struct raw_track {
     std::string name;  ///< empty for a file without tracks
+    std::string where;  ///< "walk.json: tracks.hip", "walk.csv:1" (the header), for errors
     key_settings settings;
     std::vector<raw_key> keys;
 };
 
 struct key {
+    std::string where;            ///< as raw_key::where
     double time = 0;              ///< seconds
     std::optional<double> frame;  ///< as given (the key's time, unless it also has a time)
     bool has_time = true;         ///< the input gave a time (not only a frame)
