@@ -8,32 +8,28 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <set>
 #include <sstream>
 
 #include "keyrot/compare.hpp"
 #include "keyrot/describe.hpp"
 #include "keyrot/output.hpp"
 #include "keyrot/resample.hpp"
+#include "keyrot/source.hpp"
 
 namespace keyrot {
 namespace {
 
-std::string read_stream(std::istream& in) {
-    std::ostringstream buf;
-    buf << in.rdbuf();
-    return std::move(buf).str();
-}
-
-std::string read_file(const std::string& path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) throw error(fmt::format("cannot read '{}': it is a directory", path));
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw error(fmt::format("cannot read '{}': {}", path, std::strerror(errno)));
-    return read_stream(in);
-}
-
-key_settings input_settings(const options& o) {
+key_settings settings_of(const options& o) {
     return {o.radians ? angle_unit::radians : angle_unit::degrees, o.euler, o.key_fps.value_or(o.fps), o.strict};
+}
+
+read_options reading(const options& o, const input_source& src) {
+    read_options ro;
+    ro.source = src.source();
+    ro.settings = settings_of(o);
+    ro.order = o.order;
+    return ro;
 }
 
 write_options output_settings(const options& o, const std::optional<euler_seq>& input_euler) {
@@ -50,77 +46,227 @@ write_options output_settings(const options& o, const std::optional<euler_seq>& 
     return w;
 }
 
-bool has_translation(const track& t) {
-    for (const key& k : t.keys)
-        if (k.translation) return true;
-    return false;
+resample_options resampling(const options& o) {
+    resample_options r;
+    r.fps = o.fps;
+    r.how = o.how;
+    r.way = o.way;
+    r.max_frames = o.max_frames;
+    return r;
 }
 
-/// An input file (or stdin) read, parsed and validated.
+/// An input read whole: tracks in memory (compare, info, JSON input, and
+/// line-based input whose tracks are interleaved).
 struct input {
-    std::string name;  ///< as given on the command line; "-" for stdin
     std::string source;
     format fmt = format::csv;
     bool named = false;
     std::vector<track> tracks;
 };
 
-input load(const options& o, const std::string& name, std::istream& in, warnings& warn) {
-    const bool from_stdin = name == "-";
-    const std::string text = from_stdin ? read_stream(in) : read_file(name);
-    input result{name, warn.source(), format::csv, false, {}};
-    result.fmt = o.from ? *o.from : format_of_path(name).value_or(sniff_format(text));
-    read_options ro;
-    ro.source = warn.source();
-    ro.settings = input_settings(o);
-    ro.order = o.order;
-    const raw_document doc = read_document(text, result.fmt, ro, warn);
+input load(const options& o, const input_source& src, warnings& warn) {
+    input result{src.source(), src.detect(o.from), false, {}};
+    const auto stream = src.open();
+    const raw_document doc = read_document(*stream, result.fmt, reading(o, src), warn);
     result.named = doc.named;
     result.tracks.reserve(doc.tracks.size());
     for (const raw_track& raw : doc.tracks) result.tracks.push_back(make_track(raw, warn));
     return result;
 }
 
-std::string source_name(const std::string& name) { return name == "-" ? "<stdin>" : name; }
+/// What a writer must know of a document before its first row, and what
+/// each track needs before its first frame, gathered key by key.
+struct document_facts {
+    struct track_facts {
+        std::string name;
+        key first, last;
+        bool translation = false;
+        std::optional<euler_seq> euler;
+    };
+    std::vector<track_facts> tracks;
+    bool named = false;
+    bool all_frames = true;  // every key has a frame
+    bool any_time = false;   // some key has a time
+    bool frames = false;     // some key has both: keyrot's own frames
 
-/// resample / convert: one input's output text.
-std::string transform(const options& o, const input& doc, format out_fmt, warnings& warn) {
-    table_info info;
-    info.named = doc.named;
-    for (const track& t : doc.tracks) info.translation = info.translation || has_translation(t);
-    if (o.cmd == command::resample) {
-        info.fps = o.fps;
-        info.how = o.how;
-    } else {
-        info.times = time_columns::as_given;
-        info.all_frames = true;
-        info.any_time = false;
-        bool frames = false;  // rows with both a frame and a time: keyrot's own frames
-        for (const track& t : doc.tracks)
-            for (const key& k : t.keys) {
-                info.all_frames = info.all_frames && k.frame.has_value();
-                info.any_time = info.any_time || k.has_time;
-                frames = frames || (k.frame && k.has_time);
-            }
-        info.rows_name = frames ? "frames" : "keys";
+    void add(const std::string& track, const std::optional<euler_seq>& euler, key k) {
+        all_frames = all_frames && k.frame.has_value();
+        any_time = any_time || k.has_time;
+        frames = frames || (k.frame && k.has_time);
+        if (tracks.empty() || tracks.back().name != track) tracks.push_back({track, k, k, false, euler});
+        tracks.back().translation = tracks.back().translation || k.translation.has_value();
+        tracks.back().last = std::move(k);
     }
-    std::string out;
-    const auto writer = make_writer(out_fmt, out, info, output_settings(o, doc.tracks.front().euler), warn);
-    resample_options ropts;
-    ropts.fps = o.fps;
-    ropts.how = o.how;
-    ropts.way = o.way;
-    ropts.max_frames = o.max_frames;
-    for (const track& t : doc.tracks) {
-        writer->begin_track(t.name, has_translation(t));
+
+    table_info table(const options& o) const {
+        table_info info;
+        info.named = named;
+        for (const auto& t : tracks) info.translation = info.translation || t.translation;
         if (o.cmd == command::resample) {
-            resample(t, ropts, [&](const sample& s) { writer->row(s); });
+            info.fps = o.fps;
+            info.how = o.how;
         } else {
-            for (const key& k : t.keys) writer->row(sample{k.time, k.frame, k.rotation, k.translation, k.has_time});
+            info.times = time_columns::as_given;
+            info.all_frames = all_frames;
+            info.any_time = any_time;
+            info.rows_name = frames ? "frames" : "keys";
+        }
+        return info;
+    }
+
+    /// resample: the frame grid of every track is within bounds.
+    void check(const options& o, const std::string& source) const {
+        if (o.cmd != command::resample) return;
+        for (const auto& t : tracks) {
+            check_method(o.how, t.euler);
+            check_frame_range(t.first, t.last, t.name, resampling(o), source);
         }
     }
+};
+
+document_facts facts_of(const input& doc) {
+    document_facts d;
+    d.named = doc.named;
+    for (const track& t : doc.tracks)
+        for (const key& k : t.keys) d.add(t.name, t.euler, k);
+    return d;
+}
+
+/// Pass 1 over a line-based input: every key validated, the facts learnt.
+/// Stops early (interleaved = true) when a track comes back after another
+/// one began: such input is then read whole.
+document_facts scan(const options& o, const input_source& src, format f, warnings& warn, bool& interleaved) {
+    const auto stream = src.open();
+    const read_options ro = reading(o, src);
+    const auto reader = make_key_reader(*stream, f, ro, warn);
+    document_facts d;
+    std::set<std::string> seen;
+    std::string name;
+    raw_key raw;
+    interleaved = false;
+    while (reader->next(name, raw)) {
+        key k = make_key(raw, ro.settings, warn);
+        if (!d.tracks.empty() && d.tracks.back().name == name) {
+            check_order(d.tracks.back().last, k, src.source());
+        } else if (!seen.insert(name).second) {
+            interleaved = true;
+            return d;
+        }
+        d.add(name, ro.settings.euler, std::move(k));
+    }
+    if (d.tracks.empty()) throw input_error(where(src.source(), reader->start()), "no keys: expected at least one key");
+    d.named = reader->named();
+    return d;
+}
+
+/// Where output text goes: -o FILE (a temporary file renamed on success) or
+/// a stream, in chunks of about a megabyte.
+class chunked_output {
+public:
+    chunked_output(const std::optional<std::string>& path, std::ostream& out) : out_(out) {
+        if (path) file_.emplace(*path);
+        text_.reserve(chunk + chunk / 4);
+    }
+    std::string& text() noexcept { return text_; }
+    void maybe_flush() {
+        if (text_.size() >= chunk) flush();
+    }
+    void finish() {
+        flush();
+        if (file_) file_->commit();
+    }
+
+private:
+    static constexpr std::size_t chunk = std::size_t{1} << 20;
+    void flush() {
+        if (file_) {
+            file_->write(text_);
+        } else {
+            out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+            out_.flush();
+            if (!out_) throw error("cannot write to standard output");
+        }
+        text_.clear();
+    }
+
+    std::ostream& out_;
+    std::optional<output_file> file_;
+    std::string text_;
+};
+
+sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
+
+/// Pass 2 over a line-based input whose tracks come one after another:
+/// each track is resampled (or converted) as its keys arrive.
+void stream_rows(const options& o, const input_source& src, format f, const document_facts& d, table_writer& writer,
+                 chunked_output& out, warnings& warn) {
+    const auto stream = src.open();
+    const read_options ro = reading(o, src);
+    const auto reader = make_key_reader(*stream, f, ro, warn);
+    const auto row = [&](const sample& s) {
+        writer.row(s);
+        out.maybe_flush();
+    };
+    std::optional<track_resampler> resampler;
+    std::size_t track = 0;
+    std::string name;
+    raw_key raw;
+    bool started = false;
+    while (reader->next(name, raw)) {
+        const key k = make_key(raw, ro.settings, warn);
+        if (!started || name != d.tracks[track].name) {
+            if (resampler) resampler->finish();
+            track += started ? 1 : 0;
+            started = true;
+            const auto& facts = d.tracks[track];
+            writer.begin_track(facts.name, facts.translation);
+            if (o.cmd == command::resample) resampler.emplace(resampling(o), facts.euler, facts.translation, row);
+        }
+        if (resampler) resampler->add(k);
+        else row(key_row(k));
+    }
+    if (resampler) resampler->finish();
+}
+
+/// The tracks of an input read whole.
+void whole_rows(const options& o, const input& doc, table_writer& writer, chunked_output& out) {
+    const auto row = [&](const sample& s) {
+        writer.row(s);
+        out.maybe_flush();
+    };
+    for (const track& t : doc.tracks) {
+        bool translation = false;
+        for (const key& k : t.keys) translation = translation || k.translation.has_value();
+        writer.begin_track(t.name, translation);
+        if (o.cmd == command::resample) {
+            resample(t, resampling(o), doc.source, row);
+        } else {
+            for (const key& k : t.keys) row(key_row(k));
+        }
+    }
+}
+
+/// resample or convert one input into `target` (a file) or `out`.
+void transform(const options& o, const input_source& src, format in_fmt, format out_fmt,
+               const std::optional<std::string>& target, std::ostream& out, warnings& warn) {
+    // Line-based input streams in two passes: everything is validated before
+    // the first byte is written, so an error never leaves partial output.
+    bool interleaved = in_fmt == format::json;
+    document_facts d;
+    std::optional<input> whole;
+    if (!interleaved) d = scan(o, src, in_fmt, warn, interleaved);
+    if (interleaved) {
+        whole = load(o, src, warn);
+        d = facts_of(*whole);
+    }
+    d.check(o, src.source());
+    const write_options wopts = output_settings(o, d.tracks.front().euler);
+    chunked_output sink(target, out);
+    const auto writer = make_writer(out_fmt, sink.text(), d.table(o), wopts, warn);
+    if (whole) whole_rows(o, *whole, *writer, sink);
+    else stream_rows(o, src, in_fmt, d, *writer, sink, warn);
     writer->finish();
-    return out;
+    sink.finish();
 }
 
 int run_transform(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
@@ -136,25 +282,20 @@ int run_transform(const options& o, std::istream& in, std::ostream& out, std::os
     for (const std::string& name : inputs) {
         try {
             if (name == "-" && o.output_dir) throw usage_error("standard input ('-') cannot be used with --output-dir");
-            warnings warn(err, source_name(name));
-            const input doc = load(o, name, in, warn);
+            const input_source src(name, in);
+            warnings warn(err, src.source());
+            const format in_fmt = src.detect(o.from);
             std::optional<std::string> target;
-            format out_fmt = o.to.value_or(doc.fmt);
+            format out_fmt = o.to.value_or(in_fmt);
             if (o.output_dir) {
                 std::filesystem::path file = std::filesystem::path(name).filename();
                 file.replace_extension(to_string(out_fmt));
                 target = (std::filesystem::path(*o.output_dir) / file).string();
             } else if (o.output && *o.output != "-") {
                 target = *o.output;
-                if (!o.to) out_fmt = format_of_path(*target).value_or(doc.fmt);
+                if (!o.to) out_fmt = format_of_path(*target).value_or(in_fmt);
             }
-            const std::string result = transform(o, doc, out_fmt, warn);
-            if (target) {
-                write_file_atomically(*target, result);
-            } else {
-                out << result;
-                out.flush();
-            }
+            transform(o, src, in_fmt, out_fmt, target, out, warn);
         } catch (const usage_error&) {
             throw;
         } catch (const error& e) {
@@ -176,7 +317,6 @@ void emit(const options& o, const std::string& text, std::ostream& out) {
 /// A slerp operand ("0,0,0.7071,0.7071") as a key at `time`.
 raw_key operand(const char* name, const std::string& text, const options& o, double time) {
     raw_key k;
-    k.where = name;
     k.time = time;
     k.kind = o.from_rep;
     const std::size_t want = o.from_rep == rep::rotvec || o.from_rep == rep::euler ? 3 : 4;
@@ -217,16 +357,17 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
         for (int i = 0; i <= *o.steps; ++i) ts.push_back(static_cast<double>(i) / *o.steps);
     }
     if (ts.empty()) throw usage_error("slerp needs -t T or --steps N");
-    warnings warn(err, "<command line>");
-    const track t = make_track(
-        raw_track{"", "Q0", input_settings(o), {operand("Q0", o.q0, o, 0), operand("Q1", o.q1, o, 1)}}, warn);
+    // Each operand is its own source for messages: "keyrot: Q1: quaternion is zero: ...".
+    warnings warn0(err, "Q0"), warn1(err, "Q1");
+    const track t{"", o.euler, {make_key(operand("Q0", o.q0, o, 0), settings_of(o), warn0),
+                                make_key(operand("Q1", o.q1, o, 1), settings_of(o), warn1)}};
     const rotation_curve curve(t, o.how, o.way);
     table_info info;
     info.times = time_columns::time_only;
     info.time_name = "t";
     info.how = o.how;
     std::string text;
-    const auto writer = make_writer(o.to.value_or(format::csv), text, info, output_settings(o, t.euler), warn);
+    const auto writer = make_writer(o.to.value_or(format::csv), text, info, output_settings(o, t.euler), warn0);
     writer->begin_track("", false);
     for (double h : ts) {
         const quat q = h == 0 ? curve.at_key(0) : h == 1 ? curve.at_key(1) : curve.at(0, h);
@@ -288,9 +429,10 @@ std::string json_report(const comparison& c, const tolerances& tol) {
 int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
     if (o.inputs.size() != 2) throw usage_error("compare needs two files: EXPECTED ACTUAL");
     if (o.inputs[0] == "-" && o.inputs[1] == "-") throw usage_error("compare: only one of EXPECTED and ACTUAL can be '-'");
-    warnings warn_e(err, source_name(o.inputs[0])), warn_a(err, source_name(o.inputs[1]));
-    const input expected = load(o, o.inputs[0], in, warn_e);
-    const input actual = load(o, o.inputs[1], in, warn_a);
+    const input_source expected_src(o.inputs[0], in), actual_src(o.inputs[1], in);
+    warnings warn_e(err, expected_src.source()), warn_a(err, actual_src.source());
+    const input expected = load(o, expected_src, warn_e);
+    const input actual = load(o, actual_src, warn_a);
     const tolerances tol{o.tol_deg, o.tol_translation};
     const comparison c = compare_tracks(expected.tracks, actual.tracks, tol);
 
@@ -381,8 +523,9 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
     int status = 0;
     for (const std::string& name : inputs) {
         try {
-            warnings warn(err, source_name(name));
-            const input doc = load(o, name, in, warn);
+            const input_source src(name, in);
+            warnings warn(err, src.source());
+            const input doc = load(o, src, warn);
             std::vector<track_info> infos;
             for (const track& t : doc.tracks) infos.push_back(describe(t));
             text += as_json ? info_json(doc, infos) : info_text(doc, infos, o.precision);

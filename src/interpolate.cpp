@@ -1,6 +1,5 @@
 #include "keyrot/interpolate.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -82,63 +81,64 @@ quat squad(quat q0, quat q1, quat s0, quat s1, double h) noexcept {
     return slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2 * h * (1 - h));
 }
 
-rotation_curve::rotation_curve(const track& t, method m, path p) : method_(m), seq_(t.euler) {
-    const std::size_t n = t.keys.size();
-    q_.reserve(n);
-    for (const key& k : t.keys) {
-        quat q = k.rotation;
-        if (p == path::shortest && !q_.empty() && dot(q_.back(), q) < 0) q = -q;
-        q_.push_back(q);
-    }
-    if (m == method::slerp || m == method::squad)
-        for (std::size_t i = 0; i + 1 < n; ++i) slerps_.emplace_back(q_[i], q_[i + 1]);
-    if (m == method::squad) {
-        s_ = q_;
-        for (std::size_t i = 1; i + 1 < n; ++i) s_[i] = squad_control(q_[i - 1], q_[i], q_[i + 1]);
-        for (std::size_t i = 0; i + 1 < n; ++i) slerps_.emplace_back(s_[i], s_[i + 1]);
-    }
-    if (m == method::euler) {
-        if (!seq_) throw usage_error("--method euler needs an Euler sequence: expected --euler SEQ");
-        euler_.reserve(n);
-        for (const key& k : t.keys) euler_.push_back(k.euler ? *k.euler : to_euler(k.rotation, *seq_).angles);
-    }
-}
-
-quat rotation_curve::at(std::size_t i, double h) const noexcept {
-    switch (method_) {
-        case method::slerp: return slerps_[i].at(h);
-        case method::nlerp: return nlerp(q_[i], q_[i + 1], h);
-        case method::squad: {
-            const std::size_t segments = q_.size() - 1;
-            return slerp(slerps_[i].at(h), slerps_[segments + i].at(h), 2 * h * (1 - h));
-        }
-        case method::step: return q_[i];
+quat segment::at(double h) const noexcept {
+    switch (how_) {
+        case method::slerp: return arc_.at(h);
+        case method::nlerp: return nlerp(q0, q1, h);
+        case method::squad: return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h));
+        case method::step: return q0;
         case method::euler: {
             std::array<double, 3> e{};
-            for (std::size_t j = 0; j < 3; ++j) e[j] = (1 - h) * euler_[i][j] + h * euler_[i + 1][j];
-            return from_euler(e, *seq_);
+            for (std::size_t j = 0; j < 3; ++j) e[j] = (1 - h) * e0_[j] + h * e1_[j];
+            return from_euler(e, seq_);
         }
     }
-    return q_[i];
+    return q0;
 }
 
-translation_curve::translation_curve(const track& t, method m) : hold_(m == method::step) {
-    for (const key& k : t.keys)
-        if (k.translation) {
-            times_.push_back(k.time);
-            values_.push_back(*k.translation);
-        }
+void check_method(method m, const std::optional<euler_seq>& seq) {
+    if (m == method::euler && !seq) throw usage_error("--method euler needs an Euler sequence: expected --euler SEQ");
 }
 
-std::optional<vec3> translation_curve::at(double time, double tol) const noexcept {
-    if (times_.empty()) return std::nullopt;
-    // The first key after `time`; the segment is [j - 1, j].
-    const auto j = static_cast<std::size_t>(std::upper_bound(times_.begin(), times_.end(), time) - times_.begin());
-    if (j < times_.size() && times_[j] - time <= tol) return values_[j];
-    if (j == 0) return values_.front();
-    if (j == times_.size() || hold_ || time - times_[j - 1] <= tol) return values_[j - 1];
-    const double h = (time - times_[j - 1]) / (times_[j] - times_[j - 1]);
-    return (1 - h) * values_[j - 1] + h * values_[j];
+segment_builder::segment_builder(method m, path p, const std::optional<euler_seq>& seq)
+    : how_(m), way_(p), seq_(seq) {
+    check_method(m, seq);
+}
+
+quat segment_builder::add(const key& k) {
+    quat q = k.rotation;
+    if (way_ == path::shortest && !window_.empty() && dot(window_.back().q, q) < 0) q = -q;
+    std::array<double, 3> e{};
+    if (how_ == method::euler) e = k.euler ? *k.euler : to_euler(k.rotation, *seq_).angles;
+    window_.push_back({k.time, q, q, e});  // s = q until both neighbours are known
+    const std::size_t n = window_.size();
+    if (how_ == method::squad && n >= 3) window_[n - 2].s = squad_control(window_[n - 3].q, window_[n - 2].q, q);
+    return q;
+}
+
+bool segment_builder::pop(segment& out, bool end) {
+    // squad's segment [0, 1] needs key 1's control point, which needs key 2
+    const std::size_t needed = how_ == method::squad && !end ? 3 : 2;
+    if (window_.size() < needed) return false;
+    const entry& a = window_[0];
+    const entry& b = window_[1];
+    out.how_ = how_;
+    out.t0 = a.time, out.t1 = b.time, out.q0 = a.q, out.q1 = b.q;
+    if (how_ == method::slerp || how_ == method::squad) out.arc_ = slerp_segment(a.q, b.q);
+    if (how_ == method::squad) out.control_arc_ = slerp_segment(a.s, b.s);
+    if (how_ == method::euler) out.e0_ = a.e, out.e1_ = b.e, out.seq_ = *seq_;
+    window_.erase(window_.begin());
+    return true;
+}
+
+rotation_curve::rotation_curve(const track& t, method m, path p) {
+    segment_builder builder(m, p, t.euler);
+    segment s;
+    for (const key& k : t.keys) {
+        keys_.push_back(builder.add(k));
+        while (builder.pop(s, false)) segments_.push_back(s);
+    }
+    while (builder.pop(s, true)) segments_.push_back(s);
 }
 
 }  // namespace keyrot

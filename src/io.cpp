@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "keyrot/io_csv.hpp"
 #include "keyrot/io_json.hpp"
@@ -54,20 +56,31 @@ void check_track_name(const std::string& name, const std::string& where) {
         throw input_error(where, fmt::format("track name '{}' has control characters: expected printable text", name));
 }
 
-void track_collector::add(const std::string& name, raw_key k) {
-    check_track_name(name, k.where);
-    const auto [it, added] = index_.emplace(name, doc_.tracks.size());
-    if (added) doc_.tracks.push_back(raw_track{name, k.where, settings_, {}});
-    doc_.tracks[it->second].keys.push_back(std::move(k));
+std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn) {
+    if (f == format::ndjson) return make_ndjson_reader(in, opts, warn);
+    return make_csv_reader(in, opts, warn);
+}
+
+raw_document read_document(std::istream& in, format f, const read_options& opts, warnings& warn) {
+    if (f == format::json) return read_json(in, opts, warn);
+    const auto reader = make_key_reader(in, f, opts, warn);
+    raw_document doc;
+    std::map<std::string, std::size_t> index;
+    std::string name;
+    raw_key k;
+    while (reader->next(name, k)) {
+        const auto [it, added] = index.emplace(name, doc.tracks.size());
+        if (added) doc.tracks.push_back(raw_track{name, k.at, opts.settings, {}});
+        doc.tracks[it->second].keys.push_back(std::move(k));
+    }
+    doc.named = reader->named();
+    if (doc.tracks.empty()) throw input_error(where(opts.source, reader->start()), "no keys: expected at least one key");
+    return doc;
 }
 
 raw_document read_document(std::string_view text, format f, const read_options& opts, warnings& warn) {
-    switch (f) {
-        case format::csv: return read_csv(text, opts, warn);
-        case format::json: return read_json(text, opts, warn);
-        case format::ndjson: return read_ndjson(text, opts, warn);
-    }
-    return {};
+    std::istringstream in{std::string(text)};
+    return read_document(in, f, opts, warn);
 }
 
 rotation_values row_values(const sample& s, const write_options& opts, warnings& warn) {

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <deque>
+#include <map>
 
 
 namespace keyrot {
@@ -10,27 +12,46 @@ namespace {
 
 constexpr std::array<std::string_view, 7> matrix4_only = {"m03", "m13", "m23", "m30", "m31", "m32", "m33"};
 
-/// Splits one line into cells; "..." quotes a cell, "" inside is a quote.
-std::vector<std::string> split_cells(std::string_view line, const std::string& where) {
-    std::vector<std::string> cells(1);
-    bool quoted = false;
-    for (std::size_t i = 0; i < line.size(); ++i) {
-        const char c = line[i];
-        if (quoted) {
-            if (c != '"') cells.back() += c;
-            else if (i + 1 < line.size() && line[i + 1] == '"') cells.back() += '"', ++i;
-            else quoted = false;
-        } else if (c == ',') {
-            cells.emplace_back();
-        } else if (c == '"') {
-            quoted = true;
-        } else {
-            cells.back() += c;
+/// The cells of one line, as views into the line (or, for a line with
+/// quotes, into unquoted copies). "..." quotes a cell, "" inside is a quote.
+class cell_splitter {
+public:
+    const std::vector<std::string_view>& split(std::string_view line, const std::string& source, std::size_t line_no) {
+        cells_.clear();
+        if (line.find('"') == std::string_view::npos) {  // the common case: no copies
+            std::size_t start = 0;
+            for (std::size_t comma; (comma = line.find(',', start)) != std::string_view::npos; start = comma + 1)
+                cells_.push_back(line.substr(start, comma - start));
+            cells_.push_back(line.substr(start));
+            return cells_;
         }
+        quoted_.clear();
+        quoted_.emplace_back();
+        bool quoted = false;
+        for (std::size_t i = 0; i < line.size(); ++i) {
+            const char c = line[i];
+            if (quoted) {
+                if (c != '"') quoted_.back() += c;
+                else if (i + 1 < line.size() && line[i + 1] == '"') quoted_.back() += '"', ++i;
+                else quoted = false;
+            } else if (c == ',') {
+                quoted_.emplace_back();
+            } else if (c == '"') {
+                quoted = true;
+            } else {
+                quoted_.back() += c;
+            }
+        }
+        if (quoted)
+            throw input_error(fmt::format("{}:{}", source, line_no), "unterminated quoted cell: expected a closing '\"'");
+        for (const std::string& cell : quoted_) cells_.emplace_back(cell);
+        return cells_;
     }
-    if (quoted) throw input_error(where, "unterminated quoted cell: expected a closing '\"'");
-    return cells;
-}
+
+private:
+    std::vector<std::string_view> cells_;
+    std::deque<std::string> quoted_;  // stable addresses for the views
+};
 
 /// Where each known column is, resolved once from the header.
 struct columns {
@@ -47,7 +68,7 @@ std::string column_list(rep r) {
     return fmt::format("{}", fmt::join(cols, " "));
 }
 
-columns parse_header(const std::vector<std::string>& cells, const std::string& where, warnings& warn) {
+columns parse_header(const std::vector<std::string_view>& cells, const std::string& where, warnings& warn) {
     columns cols;
     cols.count = cells.size();
     std::map<std::string, std::size_t> index;
@@ -108,69 +129,85 @@ columns parse_header(const std::vector<std::string>& cells, const std::string& w
     return cols;
 }
 
-double number_cell(const std::vector<std::string>& cells, std::size_t at, std::string_view name,
-                   const std::string& where) {
-    if (auto v = parse_number(cells[at])) return *v;
-    throw input_error(where, fmt::format("column '{}': expected a finite number, got '{}'", name,
-                                         trim(cells[at]).substr(0, 40)));
-}
+bool empty_cell(const std::vector<std::string_view>& cells, std::size_t at) { return trim(cells[at]).empty(); }
 
-bool empty_cell(const std::vector<std::string>& cells, std::size_t at) { return trim(cells[at]).empty(); }
+class csv_reader final : public key_reader {
+public:
+    csv_reader(std::istream& in, const read_options& opts, warnings& warn) : lines_(in), source_(opts.source) {
+        std::string_view line;
+        while (lines_.next(line)) {
+            if (skip(line)) continue;
+            header_line_ = lines_.number();
+            cols_ = parse_header(splitter_.split(line, source_, header_line_), where_now(), warn);
+            return;
+        }
+        throw input_error(source_, "empty input: expected a CSV header and keys");
+    }
+
+    bool named() const override { return cols_.track.has_value(); }
+    location start() const override { return {header_line_, {}}; }
+
+    bool next(std::string& track, raw_key& k) override {
+        std::string_view line;
+        do {
+            if (!lines_.next(line)) return false;
+        } while (skip(line));
+        const auto& cells = splitter_.split(line, source_, lines_.number());
+        if (cells.size() != cols_.count)
+            throw input_error(where_now(), fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
+        k = raw_key{};
+        k.at.line = lines_.number();
+        k.kind = cols_.kind;
+        if (cols_.time && !(cols_.frame && empty_cell(cells, *cols_.time))) k.time = number(cells, *cols_.time, "time");
+        if (cols_.frame && !(cols_.time && empty_cell(cells, *cols_.frame))) k.frame = number(cells, *cols_.frame, "frame");
+        if (!k.time && !k.frame) throw input_error(where_now(), "no time: expected a 'time' or a 'frame'");
+        const auto names = rotation_columns(cols_.kind, quat_order::wxyz);
+        for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = number(cells, cols_.rotation[i], names[i]);
+        if (cols_.translation) {
+            const auto& t = *cols_.translation;
+            const int empty = empty_cell(cells, t[0]) + empty_cell(cells, t[1]) + empty_cell(cells, t[2]);
+            if (empty == 0)
+                k.translation = vec3{number(cells, t[0], "tx"), number(cells, t[1], "ty"), number(cells, t[2], "tz")};
+            else if (empty != 3)
+                throw input_error(where_now(), "columns tx ty tz: expected three numbers or three empty cells");
+        }
+        track.clear();
+        if (cols_.track) {
+            track = trim(cells[*cols_.track]);
+            if (track.empty()) throw input_error(where_now(), "column 'track': expected a track name, got an empty cell");
+            check_track_name(track, where_now());
+        }
+        return true;
+    }
+
+private:
+    /// Blank lines and comments; and anything that is not UTF-8 is an error.
+    bool skip(std::string_view line) {
+        const std::string_view content = trim(line);
+        if (content.empty() || content.front() == '#') return true;
+        if (!is_valid_utf8(line)) throw input_error(where_now(), "invalid UTF-8: expected text");
+        return false;
+    }
+
+    std::string where_now() const { return fmt::format("{}:{}", source_, lines_.number()); }
+
+    double number(const std::vector<std::string_view>& cells, std::size_t at, std::string_view name) const {
+        if (auto v = parse_number(cells[at])) return *v;
+        throw input_error(where_now(), fmt::format("column '{}': expected a finite number, got '{}'", name,
+                                                   trim(cells[at]).substr(0, 40)));
+    }
+
+    line_reader lines_;
+    std::string source_;
+    cell_splitter splitter_;
+    columns cols_;
+    std::size_t header_line_ = 0;
+};
 
 }  // namespace
 
-raw_document read_csv(std::string_view text, const read_options& opts, warnings& warn) {
-    track_collector tracks(opts.settings);
-    std::optional<columns> cols;
-    std::string header_where;
-    line_reader lines(text);
-    std::string_view line;
-    while (lines.next(line)) {
-        const std::string_view content = trim(line);
-        if (content.empty() || content.front() == '#') continue;
-        const std::string where = fmt::format("{}:{}", opts.source, lines.number());
-        if (!is_valid_utf8(line)) throw input_error(where, "invalid UTF-8: expected text");
-        const auto cells = split_cells(line, where);
-        if (!cols) {
-            header_where = where;
-            cols = parse_header(cells, where, warn);
-            tracks.document().named = cols->track.has_value();
-            continue;
-        }
-        if (cells.size() != cols->count)
-            throw input_error(where, fmt::format("expected {} cells as in the header, got {}", cols->count, cells.size()));
-
-        raw_key k;
-        k.where = where;
-        k.kind = cols->kind;
-        if (cols->time && !(cols->frame && empty_cell(cells, *cols->time)))
-            k.time = number_cell(cells, *cols->time, "time", where);
-        if (cols->frame && !(cols->time && empty_cell(cells, *cols->frame)))
-            k.frame = number_cell(cells, *cols->frame, "frame", where);
-        if (!k.time && !k.frame) throw input_error(where, "no time: expected a 'time' or a 'frame'");
-        const auto names = rotation_columns(cols->kind, quat_order::wxyz);
-        for (std::size_t i = 0; i < cols->rotation.size(); ++i)
-            k.values[i] = number_cell(cells, cols->rotation[i], names[i], where);
-        if (cols->translation) {
-            const auto& t = *cols->translation;
-            const int empty = empty_cell(cells, t[0]) + empty_cell(cells, t[1]) + empty_cell(cells, t[2]);
-            if (empty == 0)
-                k.translation = vec3{number_cell(cells, t[0], "tx", where), number_cell(cells, t[1], "ty", where),
-                                     number_cell(cells, t[2], "tz", where)};
-            else if (empty != 3)
-                throw input_error(where, "columns tx ty tz: expected three numbers or three empty cells");
-        }
-
-        std::string name;
-        if (cols->track) {
-            name = std::string(trim(cells[*cols->track]));
-            if (name.empty()) throw input_error(where, "column 'track': expected a track name, got an empty cell");
-        }
-        tracks.add(name, std::move(k));
-    }
-    if (!cols) throw input_error(opts.source, "empty input: expected a CSV header and keys");
-    if (tracks.document().tracks.empty()) throw input_error(header_where, "header only: expected at least one key");
-    return std::move(tracks.document());
+std::unique_ptr<key_reader> make_csv_reader(std::istream& in, const read_options& opts, warnings& warn) {
+    return std::make_unique<csv_reader>(in, opts, warn);
 }
 
 namespace {

@@ -64,15 +64,15 @@ json parse(std::string_view text, std::string_view source, std::size_t first_lin
 }
 
 /// Reads the fields of one key object.
-class key_reader {
+class key_object_reader {
 public:
-    key_reader(const json& obj, std::string where, quat_order order, bool frames_doc)
-        : obj_(obj), where_(std::move(where)), order_(order), frames_doc_(frames_doc) {}
+    key_object_reader(const json& obj, const std::string& source, location at, quat_order order, bool frames_doc)
+        : obj_(obj), source_(source), at_(std::move(at)), order_(order), frames_doc_(frames_doc) {}
 
     raw_key read() {
         if (!obj_.is_object()) fail(fmt::format("expected a key object, got {}", type_name(obj_)));
         raw_key k;
-        k.where = where_;
+        k.at = at_;
         k.time = optional_number("time");
         k.frame = optional_number("frame");
         if (!k.time && !k.frame) fail("expected a 'time' or a 'frame'");
@@ -123,7 +123,7 @@ public:
     }
 
 private:
-    [[noreturn]] void fail(const std::string& message) const { throw input_error(where_, message); }
+    [[noreturn]] void fail(const std::string& message) const { throw input_error(where(source_, at_), message); }
 
     double number(const json& j, const std::string& field) const {
         if (!j.is_number())
@@ -162,7 +162,8 @@ private:
     }
 
     const json& obj_;
-    std::string where_;
+    const std::string& source_;
+    location at_;
     quat_order order_;
     bool frames_doc_;
 };
@@ -225,16 +226,19 @@ raw_track read_track(const json& j, std::string name, const std::string& path, k
     if (!keys->is_array())
         throw input_error(where, fmt::format("'{}': expected an array of keys, got {}", field.empty() ? name : field,
                                              type_name(*keys)));
-    raw_track t{std::move(name), fmt::format("{}: {}", opts.source, keys_path.empty() ? "document" : keys_path), settings, {}};
+    raw_track t{std::move(name), location{0, keys_path.empty() ? "document" : keys_path}, settings, {}};
     t.keys.reserve(keys->size());
     for (std::size_t i = 0; i < keys->size(); ++i)
-        t.keys.push_back(key_reader((*keys)[i], fmt::format("{}: {}[{}]", opts.source, keys_path, i), order, frames_doc).read());
+        t.keys.push_back(
+            key_object_reader((*keys)[i], opts.source, location{0, fmt::format("{}[{}]", keys_path, i)}, order, frames_doc)
+                .read());
     return t;
 }
 
 }  // namespace
 
-raw_document read_json(std::string_view text, const read_options& opts, warnings&) {
+raw_document read_json(std::istream& in, const read_options& opts, warnings&) {
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     const json j = parse(text, opts.source, 1);
     raw_document doc;
     key_settings settings = opts.settings;
@@ -259,30 +263,49 @@ raw_document read_json(std::string_view text, const read_options& opts, warnings
     return doc;
 }
 
-raw_document read_ndjson(std::string_view text, const read_options& opts, warnings&) {
-    track_collector tracks(opts.settings);
-    bool unnamed = false;
-    line_reader lines(text);
-    std::string_view line;
-    while (lines.next(line)) {
-        if (trim(line).empty()) continue;
-        const std::string where = fmt::format("{}:{}", opts.source, lines.number());
-        const json j = parse(line, opts.source, lines.number());
-        std::string name;
-        if (j.is_object() && j.contains("track")) {
+namespace {
+
+class ndjson_reader final : public key_reader {
+public:
+    ndjson_reader(std::istream& in, const read_options& opts) : lines_(in), opts_(opts) {}
+
+    bool named() const override { return named_; }
+    location start() const override { return {}; }
+
+    bool next(std::string& track, raw_key& k) override {
+        std::string_view line;
+        do {
+            if (!lines_.next(line)) return false;
+        } while (trim(line).empty());
+        const std::size_t line_no = lines_.number();
+        const std::string where = fmt::format("{}:{}", opts_.source, line_no);
+        const json j = parse(line, opts_.source, line_no);
+        const bool has_track = j.is_object() && j.contains("track");
+        if (line_no_first_ == 0) line_no_first_ = line_no, named_ = has_track;
+        if (has_track != named_)
+            throw input_error(where, "some lines have a 'track' and some do not: expected all or none");
+        track.clear();
+        if (has_track) {
             if (!j.at("track").is_string())
                 throw input_error(where, fmt::format("'track': expected a string, got {}", type_name(j.at("track"))));
-            name = j.at("track").get<std::string>();
-            tracks.document().named = true;
-        } else {
-            unnamed = true;
+            track = j.at("track").get<std::string>();
+            check_track_name(track, where);
         }
-        if (tracks.document().named && unnamed)
-            throw input_error(where, "some lines have a 'track' and some do not: expected all or none");
-        tracks.add(name, key_reader(j, where, opts.order, true).read());
+        k = key_object_reader(j, opts_.source, location{line_no, {}}, opts_.order, true).read();
+        return true;
     }
-    if (tracks.document().tracks.empty()) throw input_error(opts.source, "empty input: expected one key object per line");
-    return std::move(tracks.document());
+
+private:
+    line_reader lines_;
+    const read_options& opts_;
+    std::size_t line_no_first_ = 0;
+    bool named_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<key_reader> make_ndjson_reader(std::istream& in, const read_options& opts, warnings&) {
+    return std::make_unique<ndjson_reader>(in, opts);
 }
 
 namespace {

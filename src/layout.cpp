@@ -1,6 +1,10 @@
 #include "keyrot/layout.hpp"
 
+#include <fmt/compile.h>
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
 
 #include <cmath>
 #include <stdexcept>
@@ -97,17 +101,27 @@ void append_number(std::string& out, double v, std::optional<int> precision) {
     // bug upstream, and must stop the output rather than reach it.
     if (!std::isfinite(v)) throw std::logic_error(fmt::format("non-finite number {} in the output", v));
     if (v == 0) v = 0;  // drops the sign of -0
+    // Formatted into a local buffer with compiled format strings: this is
+    // the hot path of every writer.
+    char buf[400];  // the longest "{:.17f}" of a double is 327 characters
     if (!precision) {
-        fmt::format_to(std::back_inserter(out), "{}", v);
+        // Whole numbers (frame numbers, most keys' zeros) take the integer path.
+        if (std::fabs(v) < 1e15 && v == std::trunc(v)) {
+            const fmt::format_int digits(static_cast<long long>(v));
+            out.append(digits.data(), digits.size());
+            return;
+        }
+        out.append(buf, fmt::format_to(buf, FMT_COMPILE("{}"), v));
         return;
     }
-    const std::size_t start = out.size();
-    fmt::format_to(std::back_inserter(out), "{:.{}f}", v, *precision);
-    if (out.find('.', start) != std::string::npos) {
-        while (out.back() == '0') out.pop_back();
-        if (out.back() == '.') out.pop_back();
+    char* end = fmt::format_to(buf, FMT_COMPILE("{:.{}f}"), v, *precision);
+    if (std::find(buf, end, '.') != end) {
+        while (end[-1] == '0') --end;
+        if (end[-1] == '.') --end;
     }
-    if (out.compare(start, std::string::npos, "-0") == 0) out.erase(start, 1);  // -0.0001 at 2 digits
+    const char* begin = buf;
+    if (end - begin == 2 && begin[0] == '-' && begin[1] == '0') ++begin;  // -0.0001 at 2 digits
+    out.append(begin, static_cast<std::size_t>(end - begin));
 }
 
 
@@ -140,13 +154,48 @@ std::string_view without_bom(std::string_view text) noexcept {
     return text.substr(0, 3) == "\xEF\xBB\xBF" ? text.substr(3) : text;
 }
 
-line_reader::line_reader(std::string_view text) noexcept : rest_(without_bom(text)) {}
+line_reader::line_reader(std::istream& in) : in_(in), buf_(std::size_t{1} << 20, '\0') {}
 
-bool line_reader::next(std::string_view& line) noexcept {
-    if (rest_.empty()) return false;
-    const std::size_t eol = rest_.find('\n');
-    line = rest_.substr(0, eol);
-    rest_.remove_prefix(eol == std::string_view::npos ? rest_.size() : eol + 1);
+bool line_reader::fill() {
+    if (at_end_) return false;
+    if (begin_ > 0) {  // keep the unread part at the front
+        buf_.erase(0, begin_);
+        end_ -= begin_;
+        begin_ = 0;
+        buf_.resize(std::max(buf_.size(), std::size_t{1} << 20));
+    }
+    if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);  // a line longer than the buffer
+    in_.read(buf_.data() + end_, static_cast<std::streamsize>(buf_.size() - end_));
+    const auto got = static_cast<std::size_t>(in_.gcount());
+    end_ += got;
+    if (at_start_ && end_ >= 3) {
+        if (buf_.compare(0, 3, "\xEF\xBB\xBF") == 0) begin_ = 3;
+        at_start_ = false;
+    }
+    if (got == 0) at_end_ = true;
+    return got > 0;
+}
+
+bool line_reader::next(std::string_view& line) {
+    std::size_t searched = begin_;
+    for (;;) {
+        const auto* data = buf_.data();
+        const void* nl = std::memchr(data + searched, '\n', end_ - searched);
+        if (nl) {
+            const auto eol = static_cast<std::size_t>(static_cast<const char*>(nl) - data);
+            line = std::string_view(data + begin_, eol - begin_);
+            begin_ = eol + 1;
+            break;
+        }
+        const std::size_t offset = searched - begin_;
+        if (!fill()) {
+            if (begin_ == end_) return false;
+            line = std::string_view(buf_.data() + begin_, end_ - begin_);  // no final newline
+            begin_ = end_;
+            break;
+        }
+        searched = begin_ + offset;
+    }
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     ++number_;
     return true;

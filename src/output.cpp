@@ -6,7 +6,6 @@
 
 #include <cerrno>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -14,37 +13,49 @@
 
 namespace keyrot {
 
-void write_file_atomically(const std::string& path, std::string_view data) {
-    const auto fail = [&path](int err) {
-        return error(fmt::format("cannot write '{}': {}", path, std::strerror(err)));
-    };
-    const std::filesystem::path target(path);
-    std::string temp = (target.parent_path() / fmt::format(".{}.keyrot-XXXXXX", target.filename().string())).string();
-    const int fd = ::mkstemp(temp.data());
-    if (fd < 0) throw fail(errno);
-    const char* p = data.data();
-    std::size_t left = data.size();
-    while (left > 0) {
-        const ssize_t n = ::write(fd, p, left);
-        if (n < 0) {
-            if (errno == EINTR) continue;
-            const int err = errno;
-            ::close(fd);
-            std::remove(temp.c_str());
-            throw fail(err);
-        }
-        p += n;
-        left -= static_cast<std::size_t>(n);
+output_file::output_file(std::string path) : path_(std::move(path)) {
+    const std::filesystem::path target(path_);
+    temp_ = (target.parent_path() / fmt::format(".{}.keyrot-XXXXXX", target.filename().string())).string();
+    fd_ = ::mkstemp(temp_.data());
+    if (fd_ < 0) {
+        temp_.clear();
+        fail(errno);
     }
     // mkstemp creates the file 0600; give it the usual permissions.
     const mode_t mask = ::umask(0);
     ::umask(mask);
-    ::fchmod(fd, 0666 & ~mask);
-    if (::close(fd) != 0 || std::rename(temp.c_str(), path.c_str()) != 0) {
-        const int err = errno;
-        std::remove(temp.c_str());
-        throw fail(err);
+    ::fchmod(fd_, 0666 & ~mask);
+}
+
+output_file::~output_file() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!temp_.empty()) std::remove(temp_.c_str());
+}
+
+void output_file::fail(int err) { throw error(fmt::format("cannot write '{}': {}", path_, std::strerror(err))); }
+
+void output_file::write(std::string_view data) {
+    while (!data.empty()) {
+        const ssize_t n = ::write(fd_, data.data(), data.size());
+        if (n < 0) {
+            if (errno == EINTR) continue;
+            fail(errno);
+        }
+        data.remove_prefix(static_cast<std::size_t>(n));
     }
+}
+
+void output_file::commit() {
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0 || std::rename(temp_.c_str(), path_.c_str()) != 0) fail(errno);
+    temp_.clear();
+}
+
+void write_file_atomically(const std::string& path, std::string_view data) {
+    output_file f(path);
+    f.write(data);
+    f.commit();
 }
 
 }  // namespace keyrot

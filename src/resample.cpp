@@ -3,56 +3,131 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdint>
 
 #include "keyrot/tolerances.hpp"
 
 namespace keyrot {
 
-void resample(const track& t, const resample_options& opts, const std::function<void(const sample&)>& emit) {
-    const rotation_curve curve(t, opts.how, opts.way);
-    const translation_curve translation(t, opts.how);
-    const auto& keys = t.keys;
+void check_frame_range(const key& first, const key& last, const std::string& track_name, const resample_options& opts,
+                       const std::string& source) {
     const double fps = opts.fps;
-    const double first = std::ceil(keys.front().time * fps - tol::grid_frames);
-    const double last = std::floor(keys.back().time * fps + tol::grid_frames);
+    const double first_frame = std::ceil(first.time * fps - tol::grid_frames);
+    const double last_frame = std::floor(last.time * fps + tol::grid_frames);
     // Frame numbers must be exact integers in a double.
     constexpr double max_frame_number = 9007199254740992.0;  // 2^53
-    for (const key* k : {&keys.front(), &keys.back()}) {
-        const double frame = k == &keys.front() ? first : last;
+    for (const key* k : {&first, &last}) {
+        const double frame = k == &first ? first_frame : last_frame;
         if (std::fabs(frame) >= max_frame_number)
-            throw input_error(k->where, fmt::format("key time {} s is frame {:g} at {} fps: expected frames within +-2^53",
-                                                    k->time, frame, fps));
+            throw input_error(where(source, k->at), fmt::format("key time {} s is frame {:g} at {} fps: expected frames "
+                                                               "within +-2^53",
+                                                               k->time, frame, fps));
     }
-    if (last - first + 1 > opts.max_frames)
-        throw input_error(keys.back().where,
+    if (last_frame - first_frame + 1 > opts.max_frames)
+        throw input_error(where(source, last.at),
                           fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g}",
-                                      t.name.empty() ? "" : fmt::format("track '{}': ", t.name), keys.front().time,
-                                      keys.back().time, last - first + 1, fps, opts.max_frames));
-    const double key_tol = tol::grid_frames / fps;  // seconds
-    std::size_t i = 0;                              // current segment [i, i + 1]
-    quat previous{};
-    bool started = false;
-    const auto count = static_cast<std::int64_t>(last - first + 1);  // may be 0
-    for (std::int64_t n = 0; n < count; ++n) {
-        const double k = first + static_cast<double>(n);
-        sample s;
-        s.frame = k;
-        s.time = k / fps;
-        while (i + 1 < keys.size() && keys[i + 1].time <= s.time + key_tol) ++i;
-        if (i + 1 == keys.size() || std::fabs(s.time - keys[i].time) <= key_tol) {
-            s.rotation = curve.at_key(i);
-        } else {
-            // keys[i].time < s.time < keys[i + 1].time here
-            const double h = (s.time - keys[i].time) / (keys[i + 1].time - keys[i].time);
-            s.rotation = curve.at(i, h);
-        }
-        if (started && dot(previous, s.rotation) < 0) s.rotation = -s.rotation;
-        previous = s.rotation;
-        started = true;
-        s.translation = translation.at(s.time, key_tol);
-        emit(s);
+                                      track_name.empty() ? "" : fmt::format("track '{}': ", track_name), first.time,
+                                      last.time, last_frame - first_frame + 1, fps, opts.max_frames));
+}
+
+track_resampler::track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, bool translations,
+                                 frame_sink emit)
+    : opts_(opts),
+      key_tol_(tol::grid_frames / opts.fps),
+      builder_(opts.how, opts.way, seq),
+      emit_(std::move(emit)),
+      translations_(translations) {}
+
+void track_resampler::add(const key& k) {
+    if (!started_) {
+        started_ = true;
+        next_frame_ = std::ceil(k.time * opts_.fps - tol::grid_frames);
     }
+    if (k.translation) {
+        translation_keys_.emplace_back(k.time, *k.translation);
+        resolve_translations(false);
+    }
+    last_key_ = builder_.add(k);
+    last_time_ = k.time;
+    segment s;
+    while (builder_.pop(s, false)) frames_of(s);
+}
+
+void track_resampler::finish() {
+    if (!started_) return;
+    segment s;
+    while (builder_.pop(s, true)) frames_of(s);
+    frames_until(last_time_, last_key_);
+    resolve_translations(true);
+}
+
+void track_resampler::frames_of(const segment& s) {
+    // frames in [t0, t1): at t0 the key itself, inside by the curve; a frame
+    // within tolerance of t1 belongs to the next key
+    for (;; ++next_frame_) {
+        const double time = next_frame_ / opts_.fps;
+        if (time > s.t1 - key_tol_) break;
+        if (std::fabs(time - s.t0) <= key_tol_) {
+            out(next_frame_, s.q0);
+        } else {
+            out(next_frame_, s.at((time - s.t0) / (s.t1 - s.t0)));
+        }
+    }
+}
+
+void track_resampler::frames_until(double time, quat q) {
+    for (; next_frame_ / opts_.fps <= time + key_tol_; ++next_frame_) out(next_frame_, q);
+}
+
+void track_resampler::out(double frame, quat q) {
+    if (emitted_ && dot(previous_, q) < 0) q = -q;
+    previous_ = q;
+    emitted_ = true;
+    sample s;
+    s.frame = frame;
+    s.time = frame / opts_.fps;
+    s.rotation = q;
+    if (!translations_) {
+        emit_(s);
+        return;
+    }
+    pending_.push_back(s);
+    resolve_translations(false);
+}
+
+void track_resampler::resolve_translations(bool end) {
+    // The translation channel: linear between the keys that carry one (held
+    // for step), held before the first and after the last of them. A frame
+    // waits until the first translation key at or after it has arrived.
+    auto& keys = translation_keys_;
+    while (!pending_.empty()) {
+        sample& s = pending_.front();
+        std::size_t j = 0;  // the first translation key at or after the frame
+        while (j < keys.size() && keys[j].first < s.time - key_tol_) ++j;
+        if (j == keys.size()) {
+            if (!end) return;
+            if (!keys.empty()) s.translation = keys.back().second;
+        } else if (keys[j].first - s.time <= key_tol_ || j == 0) {
+            s.translation = keys[j].second;
+        } else if (opts_.how == method::step) {
+            s.translation = keys[j - 1].second;
+        } else {
+            const double h = (s.time - keys[j - 1].first) / (keys[j].first - keys[j - 1].first);
+            s.translation = (1 - h) * keys[j - 1].second + h * keys[j].second;
+        }
+        emit_(s);
+        pending_.pop_front();
+        // keep the key before the next frame's segment
+        while (keys.size() > 1 && j > 1) keys.pop_front(), --j;
+    }
+}
+
+void resample(const track& t, const resample_options& opts, const std::string& source, const frame_sink& emit) {
+    check_frame_range(t.keys.front(), t.keys.back(), t.name, opts, source);
+    bool translations = false;
+    for (const key& k : t.keys) translations = translations || k.translation.has_value();
+    track_resampler r(opts, t.euler, translations, emit);
+    for (const key& k : t.keys) r.add(k);
+    r.finish();
 }
 
 }  // namespace keyrot

@@ -13,27 +13,27 @@ quat unit_quaternion(const raw_key& k, const key_settings& s, warnings& warn, bo
     const auto& v = k.values;
     const quat q{v[0], v[1], v[2], v[3]};
     const double n = norm(q);
-    if (n == 0) throw input_error(k.where, "quaternion is zero: expected a non-zero quaternion");
+    if (n == 0) throw input_error(where(warn.source(), k.at), "quaternion is zero: expected a non-zero quaternion");
     if (std::fabs(n - 1) > tol::unit_norm) {
         const auto what = fmt::format("quaternion norm {} differs from 1 by more than {}", n, tol::unit_norm);
-        if (s.strict) throw input_error(k.where, what + " (--strict)");
-        warn.once("norm", fmt::format("{} ({}); such keys are normalised", what, k.where));
+        if (s.strict) throw input_error(where(warn.source(), k.at), what + " (--strict)");
+        warn.once("norm", fmt::format("{} ({}); such keys are normalised", what, where(warn.source(), k.at)));
         renormalised = true;
     }
     return normalized(q);
 }
 
-quat axis_angle_rotation(const raw_key& k, const key_settings& s) {
+quat axis_angle_rotation(const raw_key& k, const key_settings& s, const std::string& source) {
     const auto& v = k.values;
     const vec3 axis{v[0], v[1], v[2]};
     if (norm(axis) == 0) {
-        if (v[3] != 0) throw input_error(k.where, "axis is zero: expected a non-zero axis for a non-zero angle");
+        if (v[3] != 0) throw input_error(where(source, k.at), "axis is zero: expected a non-zero axis for a non-zero angle");
         return {};
     }
     return from_axis_angle(axis, v[3], s.angles);
 }
 
-quat matrix_rotation(const raw_key& k) {
+quat matrix_rotation(const raw_key& k, const std::string& source) {
     const auto& v = k.values;
     const std::size_t cols = k.kind == rep::matrix4 ? 4 : 3;
     mat3 m;
@@ -42,7 +42,7 @@ quat matrix_rotation(const raw_key& k) {
     if (k.kind == rep::matrix4) {
         const double bottom[4] = {v[12], v[13], v[14], v[15]};
         if (bottom[0] != 0 || bottom[1] != 0 || bottom[2] != 0 || bottom[3] != 1)
-            throw input_error(k.where, fmt::format("4x4 matrix bottom row is [{}, {}, {}, {}]: expected [0, 0, 0, 1]",
+            throw input_error(where(source, k.at), fmt::format("4x4 matrix bottom row is [{}, {}, {}, {}]: expected [0, 0, 0, 1]",
                                                    bottom[0], bottom[1], bottom[2], bottom[3]));
     }
     double worst = 0;  // max |R R^T - I|
@@ -57,17 +57,20 @@ quat matrix_rotation(const raw_key& k) {
                        a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
                        a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
     if (worst > tol::orthonormal)
-        throw input_error(k.where, fmt::format("matrix is not a rotation: |R Rt - I| = {:.3g}, expected at most {}",
+        throw input_error(where(source, k.at), fmt::format("matrix is not a rotation: |R Rt - I| = {:.3g}, expected at most {}",
                                                worst, tol::orthonormal));
     if (det < 0)
-        throw input_error(k.where, fmt::format("matrix is not a rotation: determinant {:.6g}, expected +1 "
+        throw input_error(where(source, k.at), fmt::format("matrix is not a rotation: determinant {:.6g}, expected +1 "
                                                "(a reflection)", det));
     return from_matrix(m);
 }
 
-key convert_key(const raw_key& k, const key_settings& s, warnings& warn) {
+}  // namespace
+
+key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
+    const std::string& source = warn.source();
     key out;
-    out.where = k.where;
+    out.at = k.at;
     out.given_as = k.kind;
     out.translation = k.translation;
     // A row with both is a frame of keyrot's own output, at whatever rate it
@@ -79,49 +82,58 @@ key convert_key(const raw_key& k, const key_settings& s, warnings& warn) {
     const auto& v = k.values;
     switch (k.kind) {
         case rep::quat: out.rotation = unit_quaternion(k, s, warn, out.renormalised); break;
-        case rep::axis_angle: out.rotation = axis_angle_rotation(k, s); break;
+        case rep::axis_angle: out.rotation = axis_angle_rotation(k, s, source); break;
         case rep::rotvec:
             out.rotation = from_rotvec({v[0], v[1], v[2]}, s.angles);
             break;
         case rep::euler: {
             if (!s.euler)
-                throw input_error(k.where, "Euler angles need a sequence: expected --euler SEQ or an \"euler\" field");
+                throw input_error(where(source, k.at), "Euler angles need a sequence: expected --euler SEQ or an \"euler\" field");
             out.euler = {to_radians(v[0], s.angles), to_radians(v[1], s.angles), to_radians(v[2], s.angles)};
             out.rotation = from_euler({v[0], v[1], v[2]}, *s.euler, s.angles);
             break;
         }
         case rep::matrix:
         case rep::matrix4:
-            out.rotation = matrix_rotation(k);
+            out.rotation = matrix_rotation(k, source);
             if (k.kind == rep::matrix4) {
                 if (k.translation)
-                    throw input_error(k.where, "4x4 matrix and a translation: expected one translation per key");
+                    throw input_error(where(source, k.at), "4x4 matrix and a translation: expected one translation per key");
                 out.translation = vec3{v[3], v[7], v[11]};
             }
             break;
     }
+    if (!std::isfinite(out.time))
+        throw input_error(where(source, k.at), fmt::format("time {} is out of range: expected a finite time", out.time));
     return out;
 }
 
-}  // namespace
+void check_order(const key& previous, const key& next, const std::string& source) {
+    if (!(next.time > previous.time))
+        throw input_error(where(source, next.at), fmt::format("time {} s is not after the previous key's {} s: "
+                                                              "expected strictly increasing times",
+                                                              next.time, previous.time));
+}
 
 track make_track(const raw_track& raw, warnings& warn) {
     track t{raw.name, raw.settings.euler, {}};
     if (raw.keys.empty())
-        throw input_error(raw.where, raw.name.empty() ? std::string("no keys: expected at least one key")
-                                                      : fmt::format("track '{}' has no keys: expected at least one key", raw.name));
+        throw input_error(where(warn.source(), raw.at),
+                          raw.name.empty() ? std::string("no keys: expected at least one key")
+                                           : fmt::format("track '{}' has no keys: expected at least one key", raw.name));
     t.keys.reserve(raw.keys.size());
     for (const raw_key& rk : raw.keys) {
-        key k = convert_key(rk, raw.settings, warn);
-        if (!std::isfinite(k.time))
-            throw input_error(rk.where, fmt::format("time {} is out of range: expected a finite time", k.time));
-        if (!t.keys.empty() && !(k.time > t.keys.back().time))
-            throw input_error(rk.where, fmt::format("time {} s is not after the previous key's {} s: expected "
-                                                    "strictly increasing times",
-                                                    k.time, t.keys.back().time));
-        t.keys.push_back(k);
+        key k = make_key(rk, raw.settings, warn);
+        if (!t.keys.empty()) check_order(t.keys.back(), k, warn.source());
+        t.keys.push_back(std::move(k));
     }
     return t;
+}
+
+std::string where(const std::string& source, const location& at) {
+    if (!at.path.empty()) return fmt::format("{}: {}", source, at.path);
+    if (at.line) return fmt::format("{}:{}", source, at.line);
+    return source;
 }
 
 }  // namespace keyrot

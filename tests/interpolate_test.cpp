@@ -203,18 +203,3 @@ TEST_CASE("path shortest flips keys into one hemisphere; direct keeps signs") {
     CHECK(near(geodesic_angle(quat{}, rotation_curve(t, method::slerp, path::shortest).at(0, 0.5)), pi / 4, 1e-15));
     CHECK(near(geodesic_angle(quat{}, rotation_curve(t, method::slerp, path::direct).at(0, 0.5)), 3 * pi / 4, 1e-15));
 }
-
-TEST_CASE("translation channel: linear between its own keys, held outside them") {
-    track t = make_track_of({quat{}, quat{}, quat{}, quat{}});
-    t.keys[1].translation = vec3{0, 0, 0};
-    t.keys[2].translation = vec3{2, 4, -6};
-    const translation_curve c(t, method::slerp);
-    CHECK(c.at(0, 1e-12)->x == 0);  // before the first translation key: held
-    CHECK(c.at(1.5, 1e-12)->y == 2);
-    CHECK(c.at(1.25, 1e-12)->z == -1.5);
-    CHECK(c.at(3, 1e-12)->x == 2);  // after the last: held
-    const translation_curve stepped(t, method::step);
-    CHECK(stepped.at(1.9, 1e-12)->x == 0);
-    track none = make_track_of({quat{}, quat{}});
-    CHECK_FALSE(translation_curve(none, method::slerp).at(0.5, 1e-12));
-}

@@ -65,7 +65,7 @@ TEST_CASE("CSV: columns in any order and case, comments, blank lines, BOM, CRLF"
     CHECK(k[0].values[0] == 0);  // w
     CHECK(k[0].values[3] == 1);  // z
     CHECK(k[1].values[0] == 1);
-    CHECK(k[1].where == "in:6");
+    CHECK(k[1].at.line == 6);
 }
 
 TEST_CASE("CSV: tracks in order of first appearance, translations optional per key") {
@@ -105,7 +105,7 @@ TEST_CASE("CSV errors name the line and what was expected") {
     CHECK(error_of("qw,qx,qy,qz\n", format::csv) == "in:1: no time column: expected a 'time' or 'frame' column");
     CHECK(error_of("time,foo\n", format::csv).find("in:1: no rotation columns") == 0);
     CHECK(error_of("", format::csv) == "in: empty input: expected a CSV header and keys");
-    CHECK(error_of("# c\ntime,qw,qx,qy,qz\n", format::csv) == "in:2: header only: expected at least one key");
+    CHECK(error_of("# c\ntime,qw,qx,qy,qz\n", format::csv) == "in:2: no keys: expected at least one key");
     CHECK(error_of("time,rx,ry,rz,tx,ty,tz\n0,0,0,0,1,,\n", format::csv).find("in:2: columns tx ty tz") == 0);
     CHECK(error_of("track,time,rx,ry,rz\n\xFF,0,0,0,0\n", format::csv) == "in:2: invalid UTF-8: expected text");
 }
@@ -128,7 +128,7 @@ TEST_CASE("JSON: keys, tracks, quaternion order and objects, document fields") {
     CHECK(*t.keys[2].frame == 48);
     CHECK(t.keys[2].translation->y == 2);
     CHECK(t.keys[5].kind == rep::matrix);
-    CHECK(t.keys[3].where == "in: keys[3]");
+    CHECK(t.keys[3].at.path == "keys[3]");
 
     const auto tracks = read(R"({"tracks": {"hip": {"keys": [{"time": 0, "quat": [1,0,0,0]}]},
                                             "knee": [{"time": 0, "quat": [1,0,0,0]}]}})",
@@ -167,7 +167,7 @@ TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
                           format::ndjson);
     CHECK(doc.named);
     CHECK(doc.tracks.size() == 2);
-    CHECK(doc.tracks[1].keys[0].where == "in:3");
+    CHECK(doc.tracks[1].keys[0].at.line == 3);
     CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1}\n", format::ndjson).find("in:2: no rotation") == 0);
     CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{oops\n", format::ndjson).find("in:2: invalid JSON") == 0);
 }

@@ -15,7 +15,7 @@ namespace {
 
 std::vector<sample> run(const track& t, resample_options opts = {}) {
     std::vector<sample> out;
-    resample(t, opts, [&](const sample& s) { out.push_back(s); });
+    resample(t, opts, "test", [&](const sample& s) { out.push_back(s); });
     return out;
 }
 
@@ -103,4 +103,40 @@ TEST_CASE("turntable: a quarter turn a second, at 2 fps, 45 degrees a frame") {
 
 TEST_CASE("an absurd time range is an error, not an endless loop") {
     CHECK_THROWS_AS(run(keys_at({{0, quat{}}, {1e300, quat{}}})), input_error);
+}
+
+TEST_CASE("translation channel: linear between its own keys, held outside them") {
+    track t = keys_at({{0, quat{}}, {1, quat{}}, {2, quat{}}, {3, quat{}}});
+    t.keys[1].translation = vec3{0, 0, 0};
+    t.keys[2].translation = vec3{2, 4, -6};
+    const auto out = run(t, {4, method::slerp, path::shortest});
+    REQUIRE(out.size() == 13);
+    CHECK(out[0].translation->x == 0);   // before the first translation key: held
+    CHECK(out[6].translation->y == 2);   // t = 1.5
+    CHECK(out[5].translation->z == -1.5);  // t = 1.25
+    CHECK(out[12].translation->x == 2);  // after the last: held
+    const auto stepped = run(t, {4, method::step, path::shortest});
+    CHECK(stepped[7].translation->x == 0);  // t = 1.75, held from t = 1
+    CHECK_FALSE(run(keys_at({{0, quat{}}, {1, quat{}}}))[3].translation);
+}
+
+TEST_CASE("streaming: frames come out as keys arrive, squad one key behind") {
+    track t = keys_at({{0, quat{}}, {0.5, exp(vec3{0, 0, 0.2})}, {1, exp(vec3{0, 0.3, 0})}, {1.5, quat{}}});
+    for (method m : {method::slerp, method::squad}) {
+        CAPTURE(to_string(m));
+        std::vector<sample> got;
+        track_resampler r({4, m, path::shortest}, std::nullopt, false, [&](const sample& s) { got.push_back(s); });
+        std::vector<std::size_t> after;
+        for (const key& k : t.keys) {
+            r.add(k);
+            after.push_back(got.size());
+        }
+        r.finish();
+        // slerp: the frames before key i once key i has arrived; squad waits for key i+1
+        CHECK(after == (m == method::slerp ? std::vector<std::size_t>{0, 2, 4, 6} : std::vector<std::size_t>{0, 0, 2, 4}));
+        CHECK(got.size() == 7);
+        // the same frames as the whole-track path
+        const auto whole = run(t, {4, m, path::shortest});
+        for (std::size_t i = 0; i < got.size(); ++i) CHECK(max_diff(got[i].rotation, whole[i].rotation) == 0);
+    }
 }

@@ -15,7 +15,7 @@ namespace {
 
 raw_key raw(double time, rep kind, std::initializer_list<double> values) {
     raw_key k;
-    k.where = "t.csv:2";
+    k.at.line = 2;
     k.time = time;
     k.kind = kind;
     std::copy(values.begin(), values.end(), k.values.begin());
@@ -94,8 +94,8 @@ TEST_CASE("validation errors name the key and what was expected") {
     t.keys = {raw(1, rep::quat, {1, 0, 0, 0}), raw(0.5, rep::quat, {1, 0, 0, 0})};
     CHECK(error_of(t).find("strictly increasing") != std::string::npos);
     t.keys = {};
-    t.where = "t.json: keys";
-    CHECK(error_of(t) == "t.json: keys: no keys: expected at least one key");
+    t.at.path = "keys";
+    CHECK(error_of(t) == "t.csv: keys: no keys: expected at least one key");
 }
 
 TEST_CASE("a frame of keyrot's output, made at any rate, is timed by its time") {

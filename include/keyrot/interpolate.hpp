@@ -6,6 +6,7 @@
 #include <string_view>
 #include <vector>
 
+#include "keyrot/convert.hpp"
 #include "keyrot/quat.hpp"
 #include "keyrot/track.hpp"
 
@@ -20,6 +21,8 @@ std::optional<method> parse_method(std::string_view name);
 std::string_view to_string(method m) noexcept;
 std::optional<path> parse_path(std::string_view name);
 std::string_view to_string(path p) noexcept;
+/// Throws usage_error for method::euler without an Euler sequence.
+void check_method(method m, const std::optional<euler_seq>& seq);
 
 /// Spherical linear interpolation from a to b, prepared once per pair of
 /// keys: Szeliski's Algorithm 2.1 with the relative rotation's axis and
@@ -28,6 +31,7 @@ std::string_view to_string(path p) noexcept;
 /// rounded even on the long way round.
 class slerp_segment {
 public:
+    slerp_segment() = default;
     slerp_segment(quat a, quat b) noexcept;
     /// Constant angular speed, no sign flip (a and b as given, so b = -a
     /// turns a full 360 degrees, about a's local x). Exact at h = 0 and 1.
@@ -49,39 +53,61 @@ quat squad_control(quat prev, quat cur, quat next) noexcept;
 /// slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)); no sign flips.
 quat squad(quat q0, quat q1, quat s0, quat s1, double h) noexcept;
 
-/// The rotation curve through one track's keys for one method and path.
-/// Precondition: the track passed make_track's validation.
+/// The curve between two neighbouring keys for one method, ready to evaluate.
+class segment {
+public:
+    double t0 = 0, t1 = 0;  ///< the keys' times
+    quat q0, q1;            ///< the keys, with the signs the path gave them
+    /// The rotation at local parameter h in [0, 1].
+    quat at(double h) const noexcept;
+
+private:
+    friend class segment_builder;
+    method how_ = method::slerp;
+    slerp_segment arc_, control_arc_;  // slerp, squad: q0 to q1; squad: s0 to s1
+    std::array<double, 3> e0_{}, e1_{};  // euler: the keys' angles
+    euler_seq seq_;
+};
+
+/// Turns a track's keys, as they arrive, into segments: the sign of each key
+/// set by the path, squad's control points (one key of look-ahead), Euler
+/// angles for --method euler. Memory stays a few keys.
+class segment_builder {
+public:
+    /// Throws usage_error for method::euler without a sequence.
+    segment_builder(method m, path p, const std::optional<euler_seq>& seq);
+    /// Adds the next key (times strictly increasing); returns its rotation
+    /// with the sign the path gave it.
+    quat add(const key& k);
+    /// The next segment whose keys (and look-ahead) have arrived; with
+    /// `end` (no more keys) also the last one. False when there is none.
+    bool pop(segment& out, bool end);
+
+private:
+    struct entry {
+        double time;
+        quat q, s;
+        std::array<double, 3> e;
+    };
+    method how_;
+    path way_;
+    std::optional<euler_seq> seq_;
+    std::vector<entry> window_;  // at most three keys
+};
+
+/// A whole track's curve, for callers that have all its keys.
 class rotation_curve {
 public:
     /// Throws usage_error for --method euler on a track without a sequence.
     rotation_curve(const track& t, method m, path p);
     /// Key i's rotation, with the sign the path gave it.
-    quat at_key(std::size_t i) const noexcept { return q_[i]; }
+    quat at_key(std::size_t i) const noexcept { return keys_[i]; }
     /// The rotation at local parameter h in [0, 1] of segment i (keys i, i+1).
-    quat at(std::size_t i, double h) const noexcept;
+    quat at(std::size_t i, double h) const noexcept { return segments_[i].at(h); }
 
 private:
-    method method_;
-    std::optional<euler_seq> seq_;
-    std::vector<quat> q_;                        // keys, hemisphere-aligned for --path shortest
-    std::vector<slerp_segment> slerps_;          // slerp: q_i to q_i+1; squad: that, then s_i to s_i+1
-    std::vector<quat> s_;                        // squad control points
-    std::vector<std::array<double, 3>> euler_;  // Euler angles per key, for --method euler
-};
-
-/// The translation channel: linear between the keys that carry one (held
-/// for step), held before the first and after the last of them.
-class translation_curve {
-public:
-    translation_curve(const track& t, method m);
-    /// std::nullopt when no key has a translation. Times within `tol`
-    /// seconds of a translation key give that key's value exactly.
-    std::optional<vec3> at(double time, double tol) const noexcept;
-
-private:
-    bool hold_;
-    std::vector<double> times_;
-    std::vector<vec3> values_;
+    std::vector<quat> keys_;
+    std::vector<segment> segments_;
 };
 
 }  // namespace keyrot

@@ -1,7 +1,7 @@
 #pragma once
 // The file formats and what is common to their readers and writers: the
 // document a reader returns and the row-by-row writer interface.
-#include <map>
+#include <istream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,9 +20,9 @@ std::optional<format> parse_format(std::string_view name);
 std::string_view to_string(format f) noexcept;
 /// ".csv" -> csv, ".json" -> json, ".ndjson" / ".jsonl" -> ndjson.
 std::optional<format> format_of_path(std::string_view path);
-/// Guess from the content: '{' or '[' first means JSON, unless the first
-/// line is a whole object and more lines follow (NDJSON); otherwise CSV.
-format sniff_format(std::string_view text);
+/// Guess from the start of the content: '{' or '[' first means JSON, unless
+/// the first line is a whole object and more lines follow (NDJSON); else CSV.
+format sniff_format(std::string_view start);
 
 /// Everything a reader needs besides the text.
 struct read_options {
@@ -39,22 +39,26 @@ struct raw_document {
 /// Throws input_error for a track name with control characters.
 void check_track_name(const std::string& name, const std::string& where);
 
-/// Groups the keys of a line-based format (CSV, NDJSON) into tracks by
-/// name, in order of first appearance.
-class track_collector {
+/// Keys one at a time from a line-based document (CSV, NDJSON), in file
+/// order, so that a long track needs no more memory than a few keys.
+class key_reader {
 public:
-    explicit track_collector(key_settings settings) : settings_(std::move(settings)) {}
-    /// Throws input_error (at k.where) for a name with control characters.
-    void add(const std::string& name, raw_key k);
-    raw_document& document() noexcept { return doc_; }
-
-private:
-    key_settings settings_;
-    raw_document doc_;
-    std::map<std::string, std::size_t> index_;
+    virtual ~key_reader() = default;
+    /// The next key and the name of its track ("" without tracks); false at
+    /// the end. Throws input_error for a malformed line.
+    virtual bool next(std::string& track, raw_key& k) = 0;
+    /// The input names its tracks (a track column, "track" fields).
+    virtual bool named() const = 0;
+    /// Where the keys start (the CSV header), for "no keys" errors.
+    virtual location start() const = 0;
 };
 
-/// Warnings (unknown columns, say) go to `warn`.
+/// For format::csv or format::ndjson. Warnings (unknown columns) go to `warn`.
+std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn);
+
+/// A whole document, keys grouped into tracks by name in order of first
+/// appearance. Warnings (unknown columns, say) go to `warn`.
+raw_document read_document(std::istream& in, format f, const read_options& opts, warnings& warn);
 raw_document read_document(std::string_view text, format f, const read_options& opts, warnings& warn);
 
 /// Frame / key time columns of a table.

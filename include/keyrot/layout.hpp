@@ -3,6 +3,7 @@
 // quaternion order, the CSV columns of each representation, the values
 // written for a rotation, and how numbers are printed.
 #include <array>
+#include <istream>
 #include <optional>
 #include <span>
 #include <string>
@@ -70,18 +71,25 @@ std::string_view trim(std::string_view text) noexcept;
 /// `text` with ASCII letters in lower case.
 std::string ascii_lower(std::string_view text);
 
-/// Splits text into lines for the line-based readers: '\n' ends a line, a
-/// '\r' before it is dropped, and a UTF-8 byte-order mark at the start is skipped.
+/// Reads a stream line by line in large chunks, for the line-based readers:
+/// '\n' ends a line, a '\r' before it is dropped, and a UTF-8 byte-order
+/// mark at the start is skipped. A line may be longer than a chunk.
 class line_reader {
 public:
-    explicit line_reader(std::string_view text) noexcept;
-    /// The next line, or false at the end. number() is its 1-based number.
-    bool next(std::string_view& line) noexcept;
+    explicit line_reader(std::istream& in);
+    /// The next line (valid until the next call), or false at the end.
+    /// number() is its 1-based number.
+    bool next(std::string_view& line);
     std::size_t number() const noexcept { return number_; }
 
 private:
-    std::string_view rest_;
+    bool fill();  // reads more; false at the end of the stream
+
+    std::istream& in_;
+    std::string buf_;
+    std::size_t begin_ = 0, end_ = 0;  // unread bytes in buf_
     std::size_t number_ = 0;
+    bool at_start_ = true, at_end_ = false;
 };
 
 }  // namespace keyrot

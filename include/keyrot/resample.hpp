@@ -1,5 +1,7 @@
 #pragma once
-// The frame grid: every frame k with k/fps inside a track's key range.
+// The frame grid: every frame k with k/fps inside a track's key range,
+// produced as the track's keys arrive.
+#include <deque>
 #include <functional>
 #include <optional>
 
@@ -26,13 +28,52 @@ struct resample_options {
     double max_frames = 1e7;
 };
 
-/// Calls emit for each frame k (ascending) with first key time <= k/fps <=
-/// last key time, to within tol::grid_frames of a frame. time = k / fps is
-/// computed afresh for each frame, never accumulated. At a key time the
-/// rotation is that key's; quaternion signs are continuous from frame to
-/// frame, starting from the first key's sign.
-/// Throws input_error (naming the last key) when the range holds more than
-/// opts.max_frames frames or frame numbers beyond 2^53.
-void resample(const track& t, const resample_options& opts, const std::function<void(const sample&)>& emit);
+using frame_sink = std::function<void(const sample&)>;
+
+/// Throws input_error (naming the key, in `source`) when a track whose keys
+/// run from `first` to `last` would have more than opts.max_frames frames or
+/// frame numbers beyond 2^53.
+void check_frame_range(const key& first, const key& last, const std::string& track_name,
+                       const resample_options& opts, const std::string& source);
+
+/// Resamples one track whose keys arrive one at a time: frames come out, in
+/// order, as soon as the keys around them (and squad's look-ahead, and the
+/// next translation key) are known. Frame k has time k / fps, computed
+/// afresh, never accumulated. At a key time the rotation is that key's;
+/// quaternion signs are continuous from frame to frame, starting from the
+/// first key's sign. The caller checks the range with check_frame_range.
+class track_resampler {
+public:
+    /// `translations`: some key of the track carries a translation (frames
+    /// then wait for the translation key after them).
+    track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, bool translations,
+                    frame_sink emit);
+    /// Precondition: times strictly increasing (make_track's validation).
+    void add(const key& k);
+    /// After the last key: the remaining frames.
+    void finish();
+
+private:
+    void frames_of(const segment& s);
+    void frames_until(double time, quat q);  // frames at a key time, up to `time` (within tolerance)
+    void out(double frame, quat q);
+    void resolve_translations(bool end);
+
+    resample_options opts_;
+    double key_tol_;  // seconds
+    segment_builder builder_;
+    frame_sink emit_;
+    bool translations_;
+    bool started_ = false;
+    double next_frame_ = 0;
+    double last_time_ = 0;
+    quat last_key_, previous_;
+    bool emitted_ = false;
+    std::deque<std::pair<double, vec3>> translation_keys_;  // the ones later frames may still need
+    std::deque<sample> pending_;                             // frames waiting for a translation key
+};
+
+/// A whole track: check_frame_range, then every frame through emit.
+void resample(const track& t, const resample_options& opts, const std::string& source, const frame_sink& emit);
 
 }  // namespace keyrot

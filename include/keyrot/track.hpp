@@ -14,10 +14,20 @@
 
 namespace keyrot {
 
+/// Where a key or track was read: a line (CSV, NDJSON) or a JSON key path.
+/// Kept raw and formatted with the source's name only for a message.
+struct location {
+    std::size_t line = 0;
+    std::string path;  ///< "tracks.hip.keys[3]"; empty for a line
+};
+
+/// "walk.csv:14", "walk.json: tracks.hip.keys[3]", or the source alone.
+std::string where(const std::string& source, const location& at);
+
 /// One key exactly as read: numbers in the file's units, not yet checked
 /// beyond being finite. Quaternion values are in (w, x, y, z) order.
 struct raw_key {
-    std::string where;  ///< "walk.csv:14" or "walk.json: keys[3]", for errors
+    location at;  ///< for errors
     std::optional<double> time, frame;
     rep kind = rep::quat;
     std::array<double, 16> values{};  ///< as many as `kind` needs
@@ -34,13 +44,13 @@ struct key_settings {
 
 struct raw_track {
     std::string name;  ///< empty for a file without tracks
-    std::string where;  ///< "walk.json: tracks.hip", "walk.csv:1" (the header), for errors
+    location at;  ///< the JSON track, or the CSV header, for errors
     key_settings settings;
     std::vector<raw_key> keys;
 };
 
 struct key {
-    std::string where;            ///< as raw_key::where
+    location at;                  ///< as raw_key::at
     double time = 0;              ///< seconds
     std::optional<double> frame;  ///< as given (the key's time, unless it also has a time)
     bool has_time = true;         ///< the input gave a time (not only a frame)
@@ -58,9 +68,15 @@ struct track {
     std::vector<key> keys;
 };
 
-/// Converts and validates: rotations to unit quaternions, frames to times,
-/// times strictly increasing, at least one key. Throws input_error naming
-/// the key; warns once per source about renormalised quaternions.
+/// One key converted and validated on its own: rotation to a unit
+/// quaternion, frame to time. Throws input_error naming the key; warns once
+/// per source about renormalised quaternions.
+key make_key(const raw_key& raw, const key_settings& settings, warnings& warn);
+
+/// Throws input_error unless `next` comes strictly after `previous`.
+void check_order(const key& previous, const key& next, const std::string& source);
+
+/// A whole track: make_key for each key, check_order, at least one key.
 track make_track(const raw_track& raw, warnings& warn);
 
 }  // namespace keyrot

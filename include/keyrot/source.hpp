@@ -1,0 +1,35 @@
+#pragma once
+// The inputs of a command: files, or standard input copied to a temporary
+// file, so that an input can be read twice (validated first, then streamed)
+// in constant memory.
+#include <istream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "keyrot/io.hpp"
+
+namespace keyrot {
+
+class input_source {
+public:
+    /// `name` is a path or "-" (standard input, read from `stdin_stream`).
+    /// Throws keyrot::error ("cannot read 'x.csv': No such file or directory").
+    input_source(const std::string& name, std::istream& stdin_stream);
+    input_source(const input_source&) = delete;
+    input_source& operator=(const input_source&) = delete;
+    ~input_source();
+
+    const std::string& name() const noexcept { return name_; }      ///< as given
+    const std::string& source() const noexcept { return source_; }  ///< for messages: the path or "<stdin>"
+    /// A fresh stream from the start.
+    std::unique_ptr<std::istream> open() const;
+    /// `given` (--from), else by the name's extension, else sniffed from the content.
+    format detect(std::optional<format> given) const;
+
+private:
+    std::string name_, source_, path_;
+    bool temporary_ = false;
+};
+
+}  // namespace keyrot
