@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <iostream>
 #include <iterator>
 #include <set>
@@ -160,38 +161,52 @@ document_facts scan(const options& o, const input_source& src, format f, warning
 }
 
 /// Where output text goes: -o FILE (a temporary file renamed on success) or
-/// a stream, in chunks of about a megabyte.
+/// a stream, in chunks of about a megabyte. A full chunk is written by a
+/// second thread while the writer fills the next one.
 class chunked_output {
 public:
     chunked_output(const std::optional<std::string>& path, std::ostream& out) : out_(out) {
         if (path) file_.emplace(*path);
         text_.reserve(chunk + chunk / 4);
     }
+    chunked_output(const chunked_output&) = delete;
+    chunked_output& operator=(const chunked_output&) = delete;
+    ~chunked_output() {
+        if (writing_.valid()) writing_.wait();  // an error elsewhere: let the write end before the file goes
+    }
     std::string& text() noexcept { return text_; }
     void maybe_flush() {
-        if (text_.size() >= chunk) flush();
+        if (text_.size() < chunk) return;
+        wait();
+        std::swap(text_, spare_);
+        text_.clear();
+        writing_ = std::async(std::launch::async, [this] { write(spare_); });
     }
     void finish() {
-        flush();
+        wait();
+        write(text_);
         if (file_) file_->commit();
     }
 
 private:
     static constexpr std::size_t chunk = std::size_t{1} << 20;
-    void flush() {
+    void wait() {
+        if (writing_.valid()) writing_.get();  // rethrows a write error
+    }
+    void write(const std::string& text) {
         if (file_) {
-            file_->write(text_);
+            file_->write(text);
         } else {
-            out_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+            out_.write(text.data(), static_cast<std::streamsize>(text.size()));
             out_.flush();
             if (!out_) throw error("cannot write to standard output");
         }
-        text_.clear();
     }
 
     std::ostream& out_;
     std::optional<output_file> file_;
-    std::string text_;
+    std::string text_, spare_;
+    std::future<void> writing_;
 };
 
 sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }

@@ -11,7 +11,13 @@ double dot(vec3 a, vec3 b) noexcept { return a.x * b.x + a.y * b.y + a.z * b.z; 
 vec3 cross(vec3 a, vec3 b) noexcept {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-double norm(vec3 v) noexcept { return std::hypot(v.x, v.y, v.z); }
+double norm(vec3 v) noexcept {
+    // hypot is slow; the plain sum of squares is as accurate whenever it can
+    // neither underflow nor overflow.
+    const double s = v.x * v.x + v.y * v.y + v.z * v.z;
+    if (s > 1e-290 && s < 1e290) return std::sqrt(s);
+    return std::hypot(v.x, v.y, v.z);
+}
 
 quat operator-(quat q) noexcept { return {-q.w, -q.x, -q.y, -q.z}; }
 
@@ -41,7 +47,11 @@ quat operator*(quat a, quat b) noexcept {
 
 double dot(quat a, quat b) noexcept { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
 
-double norm(quat q) noexcept { return std::hypot(std::hypot(q.w, q.x), std::hypot(q.y, q.z)); }
+double norm(quat q) noexcept {
+    const double s = q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z;  // see norm(vec3)
+    if (s > 1e-290 && s < 1e290) return std::sqrt(s);
+    return std::hypot(std::hypot(q.w, q.x), std::hypot(q.y, q.z));
+}
 
 quat conjugate(quat q) noexcept { return {q.w, -q.x, -q.y, -q.z}; }
 
