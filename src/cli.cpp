@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <ostream>
 
@@ -93,39 +95,84 @@ void finish(options& o, const raw_flags& f) {
 
 }  // namespace
 
+namespace {
+
+void define_resample(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
+    sub.add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
+    add_input_flags(sub, o, f);
+    add_output_flags(sub, o, f);
+    sub.add_option("--fps", o.fps, "output frame rate (default 24)");
+    add_method_flags(sub, f);
+}
+
+void define_convert(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
+    sub.add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
+    add_input_flags(sub, o, f);
+    add_output_flags(sub, o, f);
+}
+
+void define_slerp(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("Q0", o.q0, "first rotation, comma-separated (see --from-rep)")->required();
+    sub.add_option("Q1", o.q1, "second rotation")->required();
+    sub.add_option("-t", o.ts, "interpolation parameter; may repeat");
+    sub.add_option("--steps", o.steps, "sample t = 0, 1/N, ..., 1");
+    sub.add_option("--from-rep", f.from_rep, "what Q0 and Q1 are: quat (in --quat-order), axis-angle "
+                                             "(ax,ay,az,angle), rotvec, euler (needs --euler)")
+        ->check(CLI::IsMember({"quat", "axis-angle", "rotvec", "euler"}));
+    add_output_flags(sub, o, f);
+    add_method_flags(sub, f);
+}
+
+void define_compare(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("EXPECTED", o.inputs, "the key: expected rotations")->expected(2)->required();
+    sub.add_option("--tol", o.tol_deg, "largest rotation difference in degrees (default 0.01)");
+    sub.add_option("--tol-translation", o.tol_translation, "largest translation difference (default 0.001)");
+    sub.add_option("--report", f.report, "json: a JSON report on standard output")->check(CLI::IsMember({"json"}));
+    add_input_flags(sub, o, f);
+    add_output_flags(sub, o, f);
+}
+
+void define_info(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
+    add_input_flags(sub, o, f);
+    add_output_flags(sub, o, f);
+}
+
+struct command_definition {
+    const char* name;
+    const char* description;
+    command cmd;
+    void (*define)(CLI::App&, options&, raw_flags&);
+};
+
+constexpr std::array<command_definition, 5> commands = {{
+    {"resample", "resample keyframes on the frame grid", command::resample, define_resample},
+    {"convert", "rewrite keys in another representation, no resampling", command::convert, define_convert},
+    {"slerp", "interpolate between two rotations (worked examples, homework)", command::slerp, define_slerp},
+    {"compare", "grade an answer: per-frame rotation difference", command::compare, define_compare},
+    {"info", "describe a track: keys, duration, per-segment angles, warnings", command::info, define_info},
+}};
+
+}  // namespace
+
 std::optional<options> parse_command_line(int argc, const char* const* argv, std::ostream& out) {
     CLI::App app{"keyrot: keyframe rotation interpolator"};
     app.set_version_flag("--version", version);
     app.require_subcommand(1);
     options o;
     raw_flags f;
-    CLI::App* resample = app.add_subcommand("resample", "resample keyframes on the frame grid");
-    CLI::App* convert = app.add_subcommand("convert", "rewrite keys in another representation, no resampling");
-    CLI::App* slerp = app.add_subcommand("slerp", "interpolate between two rotations (worked examples, homework)");
-    CLI::App* compare = app.add_subcommand("compare", "grade an answer: per-frame rotation difference");
-    CLI::App* info = app.add_subcommand("info", "describe a track: keys, duration, per-segment angles, warnings");
-
-    for (CLI::App* sub : {resample, convert, info}) sub->add_option("files", o.inputs, "input files ('-' or none: standard input)");
-    resample->add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
-    convert->add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
-    for (CLI::App* sub : {resample, convert, compare, info}) add_input_flags(*sub, o, f);
-    for (CLI::App* sub : {resample, convert, slerp, compare, info}) add_output_flags(*sub, o, f);
-    resample->add_option("--fps", o.fps, "output frame rate (default 24)");
-    add_method_flags(*resample, f);
-
-    slerp->add_option("Q0", o.q0, "first rotation, comma-separated (see --from-rep)")->required();
-    slerp->add_option("Q1", o.q1, "second rotation")->required();
-    slerp->add_option("-t", o.ts, "interpolation parameter; may repeat");
-    slerp->add_option("--steps", o.steps, "sample t = 0, 1/N, ..., 1");
-    slerp->add_option("--from-rep", f.from_rep, "what Q0 and Q1 are: quat (in --quat-order), axis-angle "
-                                                "(ax,ay,az,angle), rotvec, euler (needs --euler)")
-        ->check(CLI::IsMember({"quat", "axis-angle", "rotvec", "euler"}));
-    add_method_flags(*slerp, f);
-
-    compare->add_option("EXPECTED", o.inputs, "the key: expected rotations")->expected(2)->required();
-    compare->add_option("--tol", o.tol_deg, "largest rotation difference in degrees (default 0.01)");
-    compare->add_option("--tol-translation", o.tol_translation, "largest translation difference (default 0.001)");
-    compare->add_option("--report", f.report, "json: a JSON report on standard output")->check(CLI::IsMember({"json"}));
+    // Only the command named first gets its options defined (about half of
+    // start-up went to defining all five); anything else defines all, for
+    // --help and for the error message.
+    const std::string_view first = argc > 1 ? argv[1] : "";
+    const bool known = std::any_of(commands.begin(), commands.end(), [&](const auto& c) { return first == c.name; });
+    std::array<CLI::App*, commands.size()> subs{};
+    for (std::size_t i = 0; i < commands.size(); ++i) {
+        subs[i] = app.add_subcommand(commands[i].name, commands[i].description);
+        if (!known || first == commands[i].name) commands[i].define(*subs[i], o, f);
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
@@ -140,11 +187,8 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
     } catch (const CLI::ParseError& e) {
         throw usage_error(fmt::format("{} (see keyrot --help)", e.what()));
     }
-    o.cmd = resample->parsed()  ? command::resample
-            : convert->parsed() ? command::convert
-            : slerp->parsed()   ? command::slerp
-            : compare->parsed() ? command::compare
-                                : command::info;
+    for (std::size_t i = 0; i < commands.size(); ++i)
+        if (subs[i]->parsed()) o.cmd = commands[i].cmd;
     finish(o, f);
     if (o.cmd == command::compare)
         for (double tol : {o.tol_deg, o.tol_translation})

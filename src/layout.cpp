@@ -155,7 +155,7 @@ std::string_view without_bom(std::string_view text) noexcept {
     return text.substr(0, 3) == "\xEF\xBB\xBF" ? text.substr(3) : text;
 }
 
-line_reader::line_reader(std::istream& in) : in_(in), buf_(std::size_t{1} << 20, '\0') {}
+line_reader::line_reader(std::istream& in) : in_(in), buf_(std::size_t{1} << 16, '\0') {}
 
 bool line_reader::fill() {
     if (at_end_) return false;
@@ -163,7 +163,7 @@ bool line_reader::fill() {
         buf_.erase(0, begin_);
         end_ -= begin_;
         begin_ = 0;
-        buf_.resize(std::max(buf_.size(), std::size_t{1} << 20));
+        buf_.resize(std::max(buf_.size(), std::size_t{1} << 16));
     }
     if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);  // a line longer than the buffer
     in_.read(buf_.data() + end_, static_cast<std::streamsize>(buf_.size() - end_));
