@@ -6,7 +6,10 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <atomic>
 #include <future>
+#include <mutex>
+#include <thread>
 #include <iostream>
 #include <iterator>
 #include <set>
@@ -284,6 +287,76 @@ void transform(const options& o, const input_source& src, format in_fmt, format 
     sink.finish();
 }
 
+/// resample or convert one input; errors and warnings to `err`. Returns the status.
+int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err) {
+    try {
+        if (name == "-" && o.output_dir) throw usage_error("standard input ('-') cannot be used with --output-dir");
+        const input_source src(name, in);
+        warnings warn(err, src.source());
+        const format in_fmt = src.detect(o.from);
+        std::optional<std::string> target;
+        format out_fmt = o.to.value_or(in_fmt);
+        if (o.output_dir) {
+            std::filesystem::path file = std::filesystem::path(name).filename();
+            file.replace_extension(to_string(out_fmt));
+            target = (std::filesystem::path(*o.output_dir) / file).string();
+        } else if (o.output && *o.output != "-") {
+            target = *o.output;
+            if (!o.to) out_fmt = format_of_path(*target).value_or(in_fmt);
+        }
+        transform(o, src, in_fmt, out_fmt, target, out, warn);
+        return 0;
+    } catch (const usage_error&) {
+        throw;
+    } catch (const error& e) {
+        print_error(err, e.what());
+        return 2;
+    }
+}
+
+/// Several files into --output-dir, --jobs at a time. Each file's messages
+/// are kept and printed in input order, so the output does not depend on
+/// which job finished first.
+int transform_batch(const options& o, const std::vector<std::string>& inputs, std::istream& in, std::ostream& out,
+                    std::ostream& err) {
+    std::vector<std::string> messages(inputs.size());
+    std::vector<int> statuses(inputs.size(), 0);
+    std::exception_ptr usage;  // a bad flag stops everything, as for one file
+    std::atomic<std::size_t> next{0}, done{0};
+    std::mutex progress_mutex;
+    const auto work = [&] {
+        for (std::size_t i; (i = next++) < inputs.size();) {
+            std::ostringstream messages_of_file;
+            try {
+                statuses[i] = transform_one(o, inputs[i], in, out, messages_of_file);
+            } catch (...) {
+                const std::lock_guard lock(progress_mutex);
+                if (!usage) usage = std::current_exception();
+                next = inputs.size();
+            }
+            messages[i] = messages_of_file.str();
+            const std::size_t finished = ++done;
+            if (o.progress) {
+                const std::lock_guard lock(progress_mutex);
+                err << fmt::format("\rkeyrot: {}/{} files", finished, inputs.size()) << std::flush;
+            }
+        }
+    };
+    const unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> workers;
+    for (unsigned j = 1; j < std::min<std::size_t>(jobs, inputs.size()); ++j) workers.emplace_back(work);
+    work();
+    for (auto& w : workers) w.join();
+    if (o.progress) err << '\n';
+    if (usage) std::rethrow_exception(usage);
+    int status = 0;
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        err << messages[i];
+        status = std::max(status, statuses[i]);
+    }
+    return status;
+}
+
 int run_transform(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
     const std::vector<std::string> inputs = o.inputs.empty() ? std::vector<std::string>{"-"} : o.inputs;
     if (inputs.size() > 1 && !o.output_dir) throw usage_error("several input files need --output-dir DIR");
@@ -293,32 +366,8 @@ int run_transform(const options& o, std::istream& in, std::ostream& out, std::os
         std::filesystem::create_directories(*o.output_dir, ec);
         if (ec) throw error(fmt::format("cannot create directory '{}': {}", *o.output_dir, ec.message()));
     }
-    int status = 0;
-    for (const std::string& name : inputs) {
-        try {
-            if (name == "-" && o.output_dir) throw usage_error("standard input ('-') cannot be used with --output-dir");
-            const input_source src(name, in);
-            warnings warn(err, src.source());
-            const format in_fmt = src.detect(o.from);
-            std::optional<std::string> target;
-            format out_fmt = o.to.value_or(in_fmt);
-            if (o.output_dir) {
-                std::filesystem::path file = std::filesystem::path(name).filename();
-                file.replace_extension(to_string(out_fmt));
-                target = (std::filesystem::path(*o.output_dir) / file).string();
-            } else if (o.output && *o.output != "-") {
-                target = *o.output;
-                if (!o.to) out_fmt = format_of_path(*target).value_or(in_fmt);
-            }
-            transform(o, src, in_fmt, out_fmt, target, out, warn);
-        } catch (const usage_error&) {
-            throw;
-        } catch (const error& e) {
-            print_error(err, e.what());
-            status = 2;
-        }
-    }
-    return status;
+    if (inputs.size() == 1) return transform_one(o, inputs.front(), in, out, err);
+    return transform_batch(o, inputs, in, out, err);
 }
 
 /// Writes `text` to -o FILE (atomically) or to `out`.

@@ -18,6 +18,7 @@ struct raw_flags {
     bool out_degrees = false, out_radians = false;
     std::optional<int> precision;
     std::optional<double> key_fps;
+    std::optional<int> jobs;
 };
 
 template <std::size_t N>
@@ -87,6 +88,10 @@ void finish(options& o, const raw_flags& f) {
     o.how = *parse_method(f.method);
     o.way = *parse_path(f.path);
     check_rate("--fps", o.fps);
+    if (f.jobs) {
+        if (*f.jobs < 1 || *f.jobs > 1024) throw usage_error(fmt::format("--jobs: expected 1 to 1024, got {}", *f.jobs));
+        o.jobs = static_cast<unsigned>(*f.jobs);
+    }
     if (f.key_fps) {
         check_rate("--key-fps", *f.key_fps);
         o.key_fps = f.key_fps;
@@ -97,9 +102,14 @@ void finish(options& o, const raw_flags& f) {
 
 namespace {
 
-void define_resample(CLI::App& sub, options& o, raw_flags& f) {
+void add_batch_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
     sub.add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
+    sub.add_option("--jobs", f.jobs, "files converted at once (default: the number of cores)");
+}
+
+void define_resample(CLI::App& sub, options& o, raw_flags& f) {
+    add_batch_flags(sub, o, f);
     add_input_flags(sub, o, f);
     add_output_flags(sub, o, f);
     sub.add_option("--fps", o.fps, "output frame rate (default 24)");
@@ -107,8 +117,7 @@ void define_resample(CLI::App& sub, options& o, raw_flags& f) {
 }
 
 void define_convert(CLI::App& sub, options& o, raw_flags& f) {
-    sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
-    sub.add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
+    add_batch_flags(sub, o, f);
     add_input_flags(sub, o, f);
     add_output_flags(sub, o, f);
 }

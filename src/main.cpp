@@ -1,4 +1,6 @@
 // keyrot's entry point: parse the command line, run, map errors to status 2.
+#include <unistd.h>
+
 #include <csignal>
 #include <iostream>
 
@@ -11,8 +13,9 @@ int main(int argc, char** argv) {
     // Unix filter, even if the parent process ignored SIGPIPE.
     std::signal(SIGPIPE, SIG_DFL);
     try {
-        const auto opts = keyrot::parse_command_line(argc, argv, std::cout);
+        auto opts = keyrot::parse_command_line(argc, argv, std::cout);
         if (!opts) return 0;
+        opts->progress = ::isatty(STDERR_FILENO) == 1;
         return keyrot::run(*opts, std::cin, std::cout, std::cerr);
     } catch (const keyrot::error& e) {
         keyrot::print_error(std::cerr, e.what());

@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -140,6 +142,24 @@ TEST_CASE("several inputs: --output-dir, a bad file is skipped and reported, sta
     CHECK_FALSE(fs::exists(s.dir / "out" / "bad.ndjson"));
 }
 
+TEST_CASE("--jobs: files in parallel, messages in input order") {
+    scratch s;
+    std::vector<std::string> files;
+    for (int i = 0; i < 8; ++i) {
+        const bool bad = i == 1 || i == 6;
+        files.push_back(s.file(fmt::format("f{}.csv", i), bad ? "time,qw,qx,qy,qz\n0,x,0,0,0\n" : two_keys));
+    }
+    const std::string out_dir = (s.dir / "out").string();
+    std::vector<const char*> args = {"resample", "--output-dir", out_dir.c_str(), "--jobs", "3"};
+    for (const auto& f : files) args.push_back(f.c_str());
+    const result r = run_with(parse(args));
+    CHECK(r.status == 2);
+    CHECK(r.err == "keyrot: " + files[1] + ":2: column 'qw': expected a finite number, got 'x'\n" + "keyrot: " + files[6] +
+                       ":2: column 'qw': expected a finite number, got 'x'\n");
+    for (int i = 0; i < 8; ++i) CHECK(fs::exists(s.dir / "out" / fmt::format("f{}.csv", i)) == (i != 1 && i != 6));
+    CHECK(scratch::read(s.dir / "out" / "f7.csv") == scratch::read(s.dir / "out" / "f0.csv"));
+}
+
 TEST_CASE("command-line checks") {
     auto usage = [](std::vector<const char*> args) {
         try {
@@ -160,4 +180,5 @@ TEST_CASE("command-line checks") {
     CHECK(usage({"convert", "--method", "slerp"}).find("--method") != std::string::npos);  // resample only
     CHECK(usage({"resample", "--out-degrees", "--out-radians"}).find("excludes") != std::string::npos);
     CHECK(usage({}).find("subcommand") != std::string::npos);
+    CHECK(usage({"convert", "--jobs", "0"}) == "--jobs: expected 1 to 1024, got 0");
 }

@@ -34,6 +34,8 @@ struct options {
     method how = method::slerp;
     path way = path::shortest;
     double max_frames = resample_options{}.max_frames;  ///< per track; not a flag (the fuzzer lowers it)
+    unsigned jobs = 0;      ///< --jobs: files converted at once; 0 = the number of cores
+    bool progress = false;  ///< a progress line on err for several files (main: when stderr is a terminal)
 
     // slerp
     std::string q0, q1;            ///< comma-separated operands
