@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <atomic>
+#include <condition_variable>
+#include <deque>
 #include <future>
 #include <mutex>
 #include <thread>
@@ -86,6 +88,7 @@ struct document_facts {
         key first, last;
         bool translation = false;
         std::optional<euler_seq> euler;
+        std::size_t keys = 0;
     };
     std::vector<track_facts> tracks;
     bool named = false;
@@ -97,7 +100,8 @@ struct document_facts {
         all_frames = all_frames && k.frame.has_value();
         any_time = any_time || k.has_time;
         frames = frames || (k.frame && k.has_time);
-        if (tracks.empty() || tracks.back().name != track) tracks.push_back({track, k, k, false, euler});
+        if (tracks.empty() || tracks.back().name != track) tracks.push_back({track, k, k, false, euler, 0});
+        ++tracks.back().keys;
         tracks.back().translation = tracks.back().translation || k.translation.has_value();
         tracks.back().last = std::move(k);
     }
@@ -116,6 +120,14 @@ struct document_facts {
             info.rows_name = frames ? "frames" : "keys";
         }
         return info;
+    }
+
+    /// About how many rows the output will have.
+    double rows(const options& o) const {
+        double n = 0;
+        for (const auto& t : tracks)
+            n += o.cmd == command::resample ? (t.last.time - t.first.time) * o.fps + 1 : static_cast<double>(t.keys);
+        return n;
     }
 
     /// resample: the frame grid of every track is within bounds.
@@ -214,17 +226,120 @@ private:
 
 sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
 
+/// Rows are formatted on a second thread (for large outputs; small ones,
+/// where starting it costs more than it saves, inline): the caller, reading
+/// and resampling, hands over batches of rows in order; a bounded queue
+/// keeps memory constant. Errors of the formatting thread come back from
+/// the next call, or from finish().
+class row_pipeline {
+public:
+    row_pipeline(table_writer& writer, chunked_output& out, bool threaded) : writer_(writer), out_(out) {
+        if (!threaded) return;
+        batch_.rows.reserve(batch_rows);
+        thread_ = std::thread([this] { consume(); });
+    }
+    row_pipeline(const row_pipeline&) = delete;
+    row_pipeline& operator=(const row_pipeline&) = delete;
+    ~row_pipeline() {
+        if (thread_.joinable()) {
+            stop();
+            thread_.join();
+        }
+    }
+    void begin_track(const std::string& name, bool translation) {
+        if (!thread_.joinable()) return writer_.begin_track(name, translation);
+        batch_.begins.push_back({batch_.rows.size(), name, translation});
+    }
+    void row(const sample& s) {
+        if (!thread_.joinable()) {
+            writer_.row(s);
+            out_.maybe_flush();
+            return;
+        }
+        batch_.rows.push_back(s);
+        if (batch_.rows.size() == batch_rows) hand_over();
+    }
+    void finish() {
+        if (!thread_.joinable()) return;
+        hand_over();
+        stop();
+        thread_.join();
+        if (failure_) std::rethrow_exception(failure_);
+    }
+
+private:
+    static constexpr std::size_t batch_rows = 4096, max_batches = 4;
+    struct track_begin {
+        std::size_t before_row;
+        std::string name;
+        bool translation;
+    };
+    struct batch {
+        std::vector<sample> rows;
+        std::vector<track_begin> begins;
+    };
+
+    void hand_over() {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return queue_.size() < max_batches || failure_; });
+        if (failure_) std::rethrow_exception(failure_);
+        queue_.push_back(std::move(batch_));
+        batch_ = batch{};
+        batch_.rows.reserve(batch_rows);
+        changed_.notify_all();
+    }
+    void stop() {
+        const std::lock_guard lock(mutex_);
+        done_ = true;
+        changed_.notify_all();
+    }
+    void consume() {
+        try {
+            for (;;) {
+                batch b;
+                {
+                    std::unique_lock lock(mutex_);
+                    changed_.wait(lock, [this] { return !queue_.empty() || done_; });
+                    if (queue_.empty()) return;
+                    b = std::move(queue_.front());
+                    queue_.pop_front();
+                    changed_.notify_all();
+                }
+                std::size_t next_begin = 0;
+                for (std::size_t i = 0; i <= b.rows.size(); ++i) {
+                    for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
+                        writer_.begin_track(b.begins[next_begin].name, b.begins[next_begin].translation);
+                    if (i == b.rows.size()) break;
+                    writer_.row(b.rows[i]);
+                    out_.maybe_flush();
+                }
+            }
+        } catch (...) {
+            const std::lock_guard lock(mutex_);
+            failure_ = std::current_exception();
+            changed_.notify_all();
+        }
+    }
+
+    table_writer& writer_;
+    chunked_output& out_;
+    batch batch_;
+    std::deque<batch> queue_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    bool done_ = false;
+    std::exception_ptr failure_;
+    std::thread thread_;  // started once everything else exists
+};
+
 /// Pass 2 over a line-based input whose tracks come one after another:
 /// each track is resampled (or converted) as its keys arrive.
-void stream_rows(const options& o, const input_source& src, format f, const document_facts& d, table_writer& writer,
-                 chunked_output& out, warnings& warn) {
+void stream_rows(const options& o, const input_source& src, format f, const document_facts& d, row_pipeline& writer,
+                 warnings& warn) {
     const auto stream = src.open();
     const read_options ro = reading(o, src);
     const auto reader = make_key_reader(*stream, f, ro, warn);
-    const auto row = [&](const sample& s) {
-        writer.row(s);
-        out.maybe_flush();
-    };
+    const auto row = [&](const sample& s) { writer.row(s); };
     std::optional<track_resampler> resampler;
     std::size_t track = 0;
     std::string name;
@@ -247,11 +362,8 @@ void stream_rows(const options& o, const input_source& src, format f, const docu
 }
 
 /// The tracks of an input read whole.
-void whole_rows(const options& o, const input& doc, table_writer& writer, chunked_output& out) {
-    const auto row = [&](const sample& s) {
-        writer.row(s);
-        out.maybe_flush();
-    };
+void whole_rows(const options& o, const input& doc, row_pipeline& writer) {
+    const auto row = [&](const sample& s) { writer.row(s); };
     for (const track& t : doc.tracks) {
         bool translation = false;
         for (const key& k : t.keys) translation = translation || k.translation.has_value();
@@ -281,8 +393,12 @@ void transform(const options& o, const input_source& src, format in_fmt, format 
     const write_options wopts = output_settings(o, d.tracks.front().euler);
     chunked_output sink(target, out);
     const auto writer = make_writer(out_fmt, sink.text(), d.table(o), wopts, warn);
-    if (whole) whole_rows(o, *whole, *writer, sink);
-    else stream_rows(o, src, in_fmt, d, *writer, sink, warn);
+    {
+        row_pipeline rows(*writer, sink, d.rows(o) > 20000);
+        if (whole) whole_rows(o, *whole, rows);
+        else stream_rows(o, src, in_fmt, d, rows, warn);
+        rows.finish();
+    }
     writer->finish();
     sink.finish();
 }

@@ -28,6 +28,7 @@ std::string printable(std::string_view text) {
 void print_error(std::ostream& err, std::string_view message) { err << "keyrot: " << printable(message) << '\n'; }
 
 void warnings::once(const std::string& kind, const std::string& message) {
+    const std::lock_guard lock(mutex_);
     if (said_.insert(kind).second) print_error(err_, "warning: " + source_ + ": " + message);
 }
 

@@ -24,6 +24,7 @@ struct input_error : error {
 
 }  // namespace keyrot
 
+#include <mutex>
 #include <ostream>
 #include <set>
 #include <string_view>
@@ -39,6 +40,7 @@ void print_error(std::ostream& err, std::string_view message);
 
 /// Warnings for one input source, each kind printed at most once
 /// ("one warning per file") as "keyrot: warning: <source>: <message>".
+/// Safe to use from the reading and the formatting thread at once.
 class warnings {
 public:
     warnings(std::ostream& err, std::string source) : err_(err), source_(std::move(source)) {}
@@ -48,6 +50,7 @@ public:
 private:
     std::ostream& err_;
     std::string source_;
+    std::mutex mutex_;
     std::set<std::string> said_;
 };
 
