@@ -6,41 +6,8 @@ keyrot=$1
 data=$2
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-
-# expect NAME STATUS EXPECTED_STDOUT -- COMMAND...
-expect() {
-    local name=$1 status=$2 want=$3
-    shift 4
-    local got rc
-    got=$("$@" 2>"$work/stderr")
-    rc=$?
-    if [[ $rc == "$status" && $got == "$want" ]]; then
-        passed=$((passed + 1))
-    else
-        failed=$((failed + 1))
-        printf 'FAIL %s: status %s (want %s)\n--- got\n%s\n--- want\n%s\n--- stderr\n%s\n' \
-            "$name" "$rc" "$status" "$got" "$want" "$(cat "$work/stderr")"
-    fi
-}
-
-# expect_error NAME EXPECTED_STDERR_LINE -- COMMAND...: status 2, nothing on stdout, one line on stderr
-expect_error() {
-    local name=$1 want=$2
-    shift 3
-    local got rc
-    got=$("$@" 2>"$work/stderr")
-    rc=$?
-    local err
-    err=$(cat "$work/stderr")
-    if [[ $rc == 2 && -z $got && $err == "$want" ]]; then
-        passed=$((passed + 1))
-    else
-        failed=$((failed + 1))
-        printf 'FAIL %s: status %s, stdout [%s]\n--- stderr\n%s\n--- want\n%s\n' "$name" "$rc" "$got" "$err" "$want"
-    fi
-}
+# shellcheck source=tests/expect.sh
+source "$(dirname "$0")/expect.sh"
 
 # Seed 000's worked example, resampled from the homework file.
 expect "seed 000 example" 0 "frame,time,qx,qy,qz,qw
@@ -215,5 +182,4 @@ expect "info flips" 0 "  0-1      90           180  (long way with --path direct
 expect "help" 0 "0" -- bash -c "'$keyrot' --help >/dev/null; echo \$?"
 expect "version" 0 "keyrot 0.1.0" -- "$keyrot" --version
 
-echo "$passed passed, $failed failed"
-[[ $failed == 0 ]]
+summary

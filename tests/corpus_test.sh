@@ -9,42 +9,22 @@ keyrot=$(realpath "$1")
 tests=$(realpath "$2")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-passed=0
-failed=0
-fail() {
-    failed=$((failed + 1))
-    printf 'FAIL %s\n' "$*"
-}
-
-# check NAME WANT_LINE -- COMMAND...: status 2, no output, exactly WANT_LINE on stderr
-check() {
-    local name=$1 want=$2
-    shift 3
-    local out rc
-    out=$("$@" 2>"$work/err")
-    rc=$?
-    local err
-    err=$(cat "$work/err")
-    if [[ $rc == 2 && -z $out && $err == "$want" && $(wc -l <"$work/err") == 1 ]]; then
-        passed=$((passed + 1))
-    else
-        fail "$name: status $rc, stdout [${out:0:80}], stderr [$err], want [$want]"
-    fi
-}
+# shellcheck source=tests/expect.sh
+source "$(dirname "$0")/expect.sh"
 
 cd "$tests/bad" || exit 1
 for expected in *.err; do
     name=${expected%.err}
     if [[ -e $name ]]; then
-        check "$name" "$(cat "$expected")" -- "$keyrot" resample "$name"
+        expect_error "$name" "$(cat "$expected")" -- "$keyrot" resample "$name"
     else
         # shellcheck disable=SC2046
-        check "$name" "$(cat "$expected")" -- "$keyrot" $(cat "$name.args")
+        expect_error "$name" "$(cat "$expected")" -- "$keyrot" $(cat "$name.args")
     fi
 done
 
 # The same inputs on standard input name <stdin>.
-check "stdin" "keyrot: <stdin>:3: column 'qw': expected a finite number, got 'one'" -- \
+expect_error "stdin" "keyrot: <stdin>:3: column 'qw': expected a finite number, got 'one'" -- \
     bash -c "'$keyrot' resample < not_a_number.csv"
 
 # Accepted quietly: every variant resamples to seed 000's example.
@@ -66,16 +46,16 @@ done
 # A single 100 MB line (generated, not checked in), in CSV and in JSON.
 cd "$work" || exit 1
 { printf 'time,qw,qx,qy,qz\n0,'; head -c 100000000 /dev/zero | tr '\0' '1'; printf ',0,0,0\n'; } > long_line.csv
-check "100 MB CSV line" "keyrot: long_line.csv:2: column 'qw': expected a finite number, got '1111111111111111111111111111111111111111'" -- \
+expect_error "100 MB CSV line" "keyrot: long_line.csv:2: column 'qw': expected a finite number, got '1111111111111111111111111111111111111111'" -- \
     "$keyrot" resample long_line.csv
 { printf '{"keys": [{"time": 0, "quat": [1, 0, 0, 0], "note": "'; head -c 100000000 /dev/zero | tr '\0' 'x'; printf '"}, {"time": 1, "quat": [1, 0, 0]}]}'; } > long_line.json
-check "100 MB JSON line" "keyrot: long_line.json: keys[1]: 'quat': expected an array of 4 numbers, got 3 elements" -- \
+expect_error "100 MB JSON line" "keyrot: long_line.json: keys[1]: 'quat': expected an array of 4 numbers, got 3 elements" -- \
     "$keyrot" resample long_line.json
 rm -f long_line.csv long_line.json
 
 # Output safety: a directory as the target is one clean error and leaves no temporary file.
 mkdir -p "$work/target.csv"
-check "directory target" "keyrot: cannot write '$work/target.csv': Is a directory" -- \
+expect_error "directory target" "keyrot: cannot write '$work/target.csv': Is a directory" -- \
     "$keyrot" resample "$tests/../data/turntable.csv" -o "$work/target.csv"
 if [[ -z $(ls -A "$work/target.csv") && -z $(find "$work" -name '*.keyrot-*') ]]; then
     passed=$((passed + 1))
@@ -91,5 +71,4 @@ else
     fail "closed pipe: stderr [$(cat "$work/pipe.err")]"
 fi
 
-echo "$passed passed, $failed failed"
-[[ $failed == 0 ]]
+summary
