@@ -1,0 +1,42 @@
+#pragma once
+// Internal to the commands (src/app.cpp, transform.cpp, grading.cpp): what
+// they share. Not part of keyrot's public API.
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "keyrot/app.hpp"
+#include "keyrot/io.hpp"
+#include "keyrot/resample.hpp"
+#include "keyrot/source.hpp"
+#include "keyrot/track.hpp"
+
+namespace keyrot::detail {
+
+/// The key settings the flags give (a JSON document may override them).
+key_settings settings_of(const options& o);
+read_options reading(const options& o, const input_source& src);
+/// Throws usage_error for --rep euler without a sequence.
+write_options output_settings(const options& o, const std::optional<euler_seq>& input_euler);
+resample_options resampling(const options& o);
+
+/// An input read whole: tracks in memory (compare, info, JSON input, and
+/// line-based input whose tracks are interleaved).
+struct input {
+    std::string source;
+    format fmt = format::csv;
+    bool named = false;
+    std::vector<track> tracks;
+};
+input load(const options& o, const input_source& src, warnings& warn);
+
+/// Writes `text` to -o FILE (atomically) or to `out`.
+void emit(const options& o, const std::string& text, std::ostream& out);
+
+int run_transform(const options& o, std::istream& in, std::ostream& out, std::ostream& err);  // resample, convert
+int run_slerp(const options& o, std::ostream& out, std::ostream& err);
+int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostream& err);
+int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream& err);
+
+}  // namespace keyrot::detail

@@ -1,0 +1,430 @@
+// resample and convert: line-based input streams in two passes (validate,
+// then resample as the keys arrive); JSON and interleaved tracks are read whole.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <filesystem>
+#include <future>
+#include <mutex>
+#include <ostream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "commands.hpp"
+#include "keyrot/output.hpp"
+
+namespace keyrot::detail {
+namespace {
+
+struct document_facts {
+    struct track_facts {
+        std::string name;
+        key first, last;
+        bool translation = false;
+        std::optional<euler_seq> euler;
+        std::size_t keys = 0;
+    };
+    std::vector<track_facts> tracks;
+    bool named = false;
+    bool all_frames = true;  // every key has a frame
+    bool any_time = false;   // some key has a time
+    bool frames = false;     // some key has both: keyrot's own frames
+
+    void add(const std::string& track, const std::optional<euler_seq>& euler, key k) {
+        all_frames = all_frames && k.frame.has_value();
+        any_time = any_time || k.has_time;
+        frames = frames || (k.frame && k.has_time);
+        if (tracks.empty() || tracks.back().name != track) tracks.push_back({track, k, k, false, euler, 0});
+        ++tracks.back().keys;
+        tracks.back().translation = tracks.back().translation || k.translation.has_value();
+        tracks.back().last = std::move(k);
+    }
+
+    table_info table(const options& o) const {
+        table_info info;
+        info.named = named;
+        for (const auto& t : tracks) info.translation = info.translation || t.translation;
+        if (o.cmd == command::resample) {
+            info.fps = o.fps;
+            info.how = o.how;
+        } else {
+            info.times = time_columns::as_given;
+            info.all_frames = all_frames;
+            info.any_time = any_time;
+            info.rows_name = frames ? "frames" : "keys";
+        }
+        return info;
+    }
+
+    /// About how many rows the output will have.
+    double rows(const options& o) const {
+        double n = 0;
+        for (const auto& t : tracks)
+            n += o.cmd == command::resample ? (t.last.time - t.first.time) * o.fps + 1 : static_cast<double>(t.keys);
+        return n;
+    }
+
+    /// resample: the frame grid of every track is within bounds.
+    void check(const options& o, const std::string& source) const {
+        if (o.cmd != command::resample) return;
+        for (const auto& t : tracks) {
+            check_method(o.how, t.euler);
+            check_frame_range(t.first, t.last, t.name, resampling(o), source);
+        }
+    }
+};
+
+document_facts facts_of(const input& doc) {
+    document_facts d;
+    d.named = doc.named;
+    for (const track& t : doc.tracks)
+        for (const key& k : t.keys) d.add(t.name, t.euler, k);
+    return d;
+}
+
+/// Pass 1 over a line-based input: every key validated, the facts learnt.
+/// Stops early (interleaved = true) when a track comes back after another
+/// one began: such input is then read whole.
+document_facts scan(const options& o, const input_source& src, format f, warnings& warn, bool& interleaved) {
+    const auto stream = src.open();
+    const read_options ro = reading(o, src);
+    const auto reader = make_key_reader(*stream, f, ro, warn);
+    document_facts d;
+    std::set<std::string> seen;
+    std::string name;
+    raw_key raw;
+    interleaved = false;
+    while (reader->next(name, raw)) {
+        key k = make_key(raw, ro.settings, warn);
+        if (!d.tracks.empty() && d.tracks.back().name == name) {
+            check_order(d.tracks.back().last, k, src.source());
+        } else if (!seen.insert(name).second) {
+            interleaved = true;
+            return d;
+        }
+        d.add(name, ro.settings.euler, std::move(k));
+    }
+    if (d.tracks.empty()) throw input_error(where(src.source(), reader->start()), "no keys: expected at least one key");
+    d.named = reader->named();
+    return d;
+}
+
+/// Where output text goes: -o FILE (a temporary file renamed on success) or
+/// a stream, in chunks of about a megabyte. A full chunk is written by a
+/// second thread while the writer fills the next one.
+class chunked_output {
+public:
+    chunked_output(const std::optional<std::string>& path, std::ostream& out) : out_(out) {
+        if (path) file_.emplace(*path);
+        text_.reserve(chunk + chunk / 4);
+    }
+    chunked_output(const chunked_output&) = delete;
+    chunked_output& operator=(const chunked_output&) = delete;
+    ~chunked_output() {
+        if (writing_.valid()) writing_.wait();  // an error elsewhere: let the write end before the file goes
+    }
+    std::string& text() noexcept { return text_; }
+    void maybe_flush() {
+        if (text_.size() < chunk) return;
+        wait();
+        std::swap(text_, spare_);
+        text_.clear();
+        writing_ = std::async(std::launch::async, [this] { write(spare_); });
+    }
+    void finish() {
+        wait();
+        write(text_);
+        if (file_) file_->commit();
+    }
+
+private:
+    static constexpr std::size_t chunk = std::size_t{1} << 20;
+    void wait() {
+        if (writing_.valid()) writing_.get();  // rethrows a write error
+    }
+    void write(const std::string& text) {
+        if (file_) {
+            file_->write(text);
+        } else {
+            out_.write(text.data(), static_cast<std::streamsize>(text.size()));
+            out_.flush();
+            if (!out_) throw error("cannot write to standard output");
+        }
+    }
+
+    std::ostream& out_;
+    std::optional<output_file> file_;
+    std::string text_, spare_;
+    std::future<void> writing_;
+};
+
+sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
+
+/// Rows are formatted on a second thread (for large outputs; small ones,
+/// where starting it costs more than it saves, inline): the caller, reading
+/// and resampling, hands over batches of rows in order; a bounded queue
+/// keeps memory constant. Errors of the formatting thread come back from
+/// the next call, or from finish().
+class row_pipeline {
+public:
+    row_pipeline(table_writer& writer, chunked_output& out, bool threaded) : writer_(writer), out_(out) {
+        if (!threaded) return;
+        batch_.rows.reserve(batch_rows);
+        thread_ = std::thread([this] { consume(); });
+    }
+    row_pipeline(const row_pipeline&) = delete;
+    row_pipeline& operator=(const row_pipeline&) = delete;
+    ~row_pipeline() {
+        if (thread_.joinable()) {
+            stop();
+            thread_.join();
+        }
+    }
+    void begin_track(const std::string& name, bool translation) {
+        if (!thread_.joinable()) return writer_.begin_track(name, translation);
+        batch_.begins.push_back({batch_.rows.size(), name, translation});
+    }
+    void row(const sample& s) {
+        if (!thread_.joinable()) {
+            writer_.row(s);
+            out_.maybe_flush();
+            return;
+        }
+        batch_.rows.push_back(s);
+        if (batch_.rows.size() == batch_rows) hand_over();
+    }
+    void finish() {
+        if (!thread_.joinable()) return;
+        hand_over();
+        stop();
+        thread_.join();
+        if (failure_) std::rethrow_exception(failure_);
+    }
+
+private:
+    static constexpr std::size_t batch_rows = 4096, max_batches = 4;
+    struct track_begin {
+        std::size_t before_row;
+        std::string name;
+        bool translation;
+    };
+    struct batch {
+        std::vector<sample> rows;
+        std::vector<track_begin> begins;
+    };
+
+    void hand_over() {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return queue_.size() < max_batches || failure_; });
+        if (failure_) std::rethrow_exception(failure_);
+        queue_.push_back(std::move(batch_));
+        batch_ = batch{};
+        batch_.rows.reserve(batch_rows);
+        changed_.notify_all();
+    }
+    void stop() {
+        const std::lock_guard lock(mutex_);
+        done_ = true;
+        changed_.notify_all();
+    }
+    void consume() {
+        try {
+            for (;;) {
+                batch b;
+                {
+                    std::unique_lock lock(mutex_);
+                    changed_.wait(lock, [this] { return !queue_.empty() || done_; });
+                    if (queue_.empty()) return;
+                    b = std::move(queue_.front());
+                    queue_.pop_front();
+                    changed_.notify_all();
+                }
+                std::size_t next_begin = 0;
+                for (std::size_t i = 0; i <= b.rows.size(); ++i) {
+                    for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
+                        writer_.begin_track(b.begins[next_begin].name, b.begins[next_begin].translation);
+                    if (i == b.rows.size()) break;
+                    writer_.row(b.rows[i]);
+                    out_.maybe_flush();
+                }
+            }
+        } catch (...) {
+            const std::lock_guard lock(mutex_);
+            failure_ = std::current_exception();
+            changed_.notify_all();
+        }
+    }
+
+    table_writer& writer_;
+    chunked_output& out_;
+    batch batch_;
+    std::deque<batch> queue_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    bool done_ = false;
+    std::exception_ptr failure_;
+    std::thread thread_;  // started once everything else exists
+};
+
+/// Pass 2 over a line-based input whose tracks come one after another:
+/// each track is resampled (or converted) as its keys arrive.
+void stream_rows(const options& o, const input_source& src, format f, const document_facts& d, row_pipeline& writer,
+                 warnings& warn) {
+    const auto stream = src.open();
+    const read_options ro = reading(o, src);
+    const auto reader = make_key_reader(*stream, f, ro, warn);
+    const auto row = [&](const sample& s) { writer.row(s); };
+    std::optional<track_resampler> resampler;
+    std::size_t track = 0;
+    std::string name;
+    raw_key raw;
+    bool started = false;
+    while (reader->next(name, raw)) {
+        const key k = make_key(raw, ro.settings, warn);
+        if (!started || name != d.tracks[track].name) {
+            if (resampler) resampler->finish();
+            track += started ? 1 : 0;
+            started = true;
+            const auto& facts = d.tracks[track];
+            writer.begin_track(facts.name, facts.translation);
+            if (o.cmd == command::resample) resampler.emplace(resampling(o), facts.euler, facts.translation, row);
+        }
+        if (resampler) resampler->add(k);
+        else row(key_row(k));
+    }
+    if (resampler) resampler->finish();
+}
+
+/// The tracks of an input read whole.
+void whole_rows(const options& o, const input& doc, row_pipeline& writer) {
+    const auto row = [&](const sample& s) { writer.row(s); };
+    for (const track& t : doc.tracks) {
+        bool translation = false;
+        for (const key& k : t.keys) translation = translation || k.translation.has_value();
+        writer.begin_track(t.name, translation);
+        if (o.cmd == command::resample) {
+            resample(t, resampling(o), doc.source, row);
+        } else {
+            for (const key& k : t.keys) row(key_row(k));
+        }
+    }
+}
+
+/// resample or convert one input into `target` (a file) or `out`.
+void transform(const options& o, const input_source& src, format in_fmt, format out_fmt,
+               const std::optional<std::string>& target, std::ostream& out, warnings& warn) {
+    // Line-based input streams in two passes: everything is validated before
+    // the first byte is written, so an error never leaves partial output.
+    bool interleaved = in_fmt == format::json;
+    document_facts d;
+    std::optional<input> whole;
+    if (!interleaved) d = scan(o, src, in_fmt, warn, interleaved);
+    if (interleaved) {
+        whole = load(o, src, warn);
+        d = facts_of(*whole);
+    }
+    d.check(o, src.source());
+    const write_options wopts = output_settings(o, d.tracks.front().euler);
+    chunked_output sink(target, out);
+    const auto writer = make_writer(out_fmt, sink.text(), d.table(o), wopts, warn);
+    {
+        row_pipeline rows(*writer, sink, d.rows(o) > 20000);
+        if (whole) whole_rows(o, *whole, rows);
+        else stream_rows(o, src, in_fmt, d, rows, warn);
+        rows.finish();
+    }
+    writer->finish();
+    sink.finish();
+}
+
+/// resample or convert one input; errors and warnings to `err`. Returns the status.
+int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err) {
+    try {
+        if (name == "-" && o.output_dir) throw usage_error("standard input ('-') cannot be used with --output-dir");
+        const input_source src(name, in);
+        warnings warn(err, src.source());
+        const format in_fmt = src.detect(o.from);
+        std::optional<std::string> target;
+        format out_fmt = o.to.value_or(in_fmt);
+        if (o.output_dir) {
+            std::filesystem::path file = std::filesystem::path(name).filename();
+            file.replace_extension(to_string(out_fmt));
+            target = (std::filesystem::path(*o.output_dir) / file).string();
+        } else if (o.output && *o.output != "-") {
+            target = *o.output;
+            if (!o.to) out_fmt = format_of_path(*target).value_or(in_fmt);
+        }
+        transform(o, src, in_fmt, out_fmt, target, out, warn);
+        return 0;
+    } catch (const usage_error&) {
+        throw;
+    } catch (const error& e) {
+        print_error(err, e.what());
+        return 2;
+    }
+}
+
+/// Several files into --output-dir, --jobs at a time. Each file's messages
+/// are kept and printed in input order, so the output does not depend on
+/// which job finished first.
+int transform_batch(const options& o, const std::vector<std::string>& inputs, std::istream& in, std::ostream& out,
+                    std::ostream& err) {
+    std::vector<std::string> messages(inputs.size());
+    std::vector<int> statuses(inputs.size(), 0);
+    std::exception_ptr usage;  // a bad flag stops everything, as for one file
+    std::atomic<std::size_t> next{0}, done{0};
+    std::mutex progress_mutex;
+    const auto work = [&] {
+        for (std::size_t i; (i = next++) < inputs.size();) {
+            std::ostringstream messages_of_file;
+            try {
+                statuses[i] = transform_one(o, inputs[i], in, out, messages_of_file);
+            } catch (...) {
+                const std::lock_guard lock(progress_mutex);
+                if (!usage) usage = std::current_exception();
+                next = inputs.size();
+            }
+            messages[i] = messages_of_file.str();
+            const std::size_t finished = ++done;
+            if (o.progress) {
+                const std::lock_guard lock(progress_mutex);
+                err << fmt::format("\rkeyrot: {}/{} files", finished, inputs.size()) << std::flush;
+            }
+        }
+    };
+    const unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> workers;
+    for (unsigned j = 1; j < std::min<std::size_t>(jobs, inputs.size()); ++j) workers.emplace_back(work);
+    work();
+    for (auto& w : workers) w.join();
+    if (o.progress) err << '\n';
+    if (usage) std::rethrow_exception(usage);
+    int status = 0;
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        err << messages[i];
+        status = std::max(status, statuses[i]);
+    }
+    return status;
+}
+
+}  // namespace
+
+int run_transform(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
+    const std::vector<std::string> inputs = o.inputs.empty() ? std::vector<std::string>{"-"} : o.inputs;
+    if (inputs.size() > 1 && !o.output_dir) throw usage_error("several input files need --output-dir DIR");
+    if (o.output_dir && o.output) throw usage_error("-o and --output-dir: expected one of them");
+    if (o.output_dir) {
+        std::error_code ec;
+        std::filesystem::create_directories(*o.output_dir, ec);
+        if (ec) throw error(fmt::format("cannot create directory '{}': {}", *o.output_dir, ec.message()));
+    }
+    if (inputs.size() == 1) return transform_one(o, inputs.front(), in, out, err);
+    return transform_batch(o, inputs, in, out, err);
+}
+
+}  // namespace keyrot::detail
