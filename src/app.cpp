@@ -1,6 +1,5 @@
 #include "keyrot/app.hpp"
 
-
 #include <ostream>
 
 #include "commands.hpp"
