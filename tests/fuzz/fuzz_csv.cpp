@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "check.hpp"
-#include "keyrot/io_csv.hpp"
+#include "keyrot/io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     std::ostringstream err;
@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     opts.source = "fuzz.csv";
     opts.settings.euler = keyrot::parse_euler_seq("ZYX");
     try {
-        const auto doc = keyrot::read_csv(keyrot::fuzz::text(data, size), opts, warn);
+        const auto doc = keyrot::read_document(keyrot::fuzz::text(data, size), keyrot::format::csv, opts, warn);
         for (const auto& raw : doc.tracks) keyrot::fuzz::check_track(keyrot::make_track(raw, warn));
     } catch (const keyrot::error&) {
     }

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "check.hpp"
-#include "keyrot/io_json.hpp"
+#include "keyrot/io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     std::ostringstream err;
@@ -12,9 +12,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     keyrot::read_options opts;
     opts.source = "fuzz.json";
     const auto text = keyrot::fuzz::text(data, size);
-    for (bool lines : {false, true}) {
+    for (const keyrot::format f : {keyrot::format::json, keyrot::format::ndjson}) {
         try {
-            const auto doc = lines ? keyrot::read_ndjson(text, opts, warn) : keyrot::read_json(text, opts, warn);
+            const auto doc = keyrot::read_document(text, f, opts, warn);
             for (const auto& raw : doc.tracks) keyrot::fuzz::check_track(keyrot::make_track(raw, warn));
         } catch (const keyrot::error&) {
         }
