@@ -53,9 +53,6 @@ input load(const options& o, const input_source& src, warnings& warn) {
     return result;
 }
 
-/// What a writer must know of a document before its first row, and what
-/// each track needs before its first frame, gathered key by key.
-
 /// Writes `text` to -o FILE (atomically) or to `out`.
 void emit(const options& o, const std::string& text, std::ostream& out) {
     if (o.output && *o.output != "-") write_file_atomically(*o.output, text);

@@ -9,8 +9,9 @@
 #include "keyrot/layout.hpp"
 
 namespace keyrot::detail {
-namespace {
 // ---------------------------------------------------------------- slerp
+
+namespace {
 
 /// A slerp operand ("0,0,0.7071,0.7071") as a key at `time`.
 raw_key operand(const char* name, const std::string& text, const options& o, double time) {
@@ -46,7 +47,6 @@ raw_key operand(const char* name, const std::string& text, const options& o, dou
     }
     return k;
 }
-
 
 }  // namespace
 
@@ -128,7 +128,6 @@ std::string json_report(const comparison& c, const tolerances& tol) {
     out += "]}\n";
     return out;
 }
-
 
 }  // namespace
 
@@ -223,7 +222,6 @@ std::string info_json(const input& doc, const std::vector<track_info>& infos) {
     out += "]}\n";
     return out;
 }
-
 
 }  // namespace
 

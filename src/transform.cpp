@@ -21,6 +21,8 @@
 namespace keyrot::detail {
 namespace {
 
+/// What a writer must know of a document before its first row, and what
+/// each track needs before its first frame, gathered key by key.
 struct document_facts {
     struct track_facts {
         std::string name;
