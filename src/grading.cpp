@@ -9,6 +9,7 @@
 #include "keyrot/layout.hpp"
 
 namespace keyrot::detail {
+
 // ---------------------------------------------------------------- slerp
 
 namespace {
@@ -79,9 +80,9 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     return 0;
 }
 
-namespace {
-
 // ---------------------------------------------------------------- compare
+
+namespace {
 
 std::string row_place(const row_difference& r) {
     std::string place = r.track.empty() ? "" : fmt::format("track {} ", r.track);
@@ -157,9 +158,9 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
     return c.failed ? 1 : 0;
 }
 
-namespace {
-
 // ---------------------------------------------------------------- info
+
+namespace {
 
 std::string index_list(const std::vector<std::size_t>& v) {
     return v.empty() ? std::string("none") : fmt::format("{}", fmt::join(v, ", "));
