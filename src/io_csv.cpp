@@ -246,27 +246,34 @@ public:
 
     void row(const sample& s) override {
         if (info_.named) append_cell_text(out_, name_), out_ += ',';
-        if (frame_) append_number(out_, *s.frame, std::nullopt), out_ += ',';
-        if (time_) append_number(out_, s.time, opts_.precision), out_ += ',';
+        // The numbers go into one buffer, appended at once: this is the hot
+        // path of resample.
+        char buf[max_row_numbers * (max_number_chars + 1)];
+        char* end = buf;
+        const auto number = [&](double v, std::optional<int> precision) {
+            end = write_number(end, v, precision);
+            *end++ = ',';
+        };
+        if (frame_) number(*s.frame, std::nullopt);
+        if (time_) number(s.time, opts_.precision);
         const rotation_values r = row_values(s, opts_, warn_);
-        for (std::size_t i = 0; i < r.size; ++i) {
-            if (i) out_ += ',';
-            append_number(out_, r.v[i], opts_.precision);
-        }
+        for (std::size_t i = 0; i < r.size; ++i) number(r.v[i], opts_.precision);
         if (translation_) {
             if (s.translation) {
-                for (double t : {s.translation->x, s.translation->y, s.translation->z})
-                    out_ += ',', append_number(out_, t, opts_.precision);
+                for (double t : {s.translation->x, s.translation->y, s.translation->z}) number(t, opts_.precision);
             } else {
-                out_ += ",,,";
+                end = std::copy_n(",,,", 3, end);
             }
         }
-        out_ += '\n';
+        end[-1] = '\n';  // in place of the last comma
+        out_.append(buf, end);
     }
 
     void finish() override {}
 
 private:
+    static constexpr std::size_t max_row_numbers = 2 + 16 + 3;  // frame, time, matrix4, translation
+
     std::string& out_;
     table_info info_;
     write_options opts_;

@@ -4,10 +4,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cstdint>
-#include <cstring>
-
+#include <bit>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <stdexcept>
 
 namespace keyrot {
@@ -97,40 +99,140 @@ rotation_values values_of(quat q, const std::optional<vec3>& translation, const 
     return out;
 }
 
-void append_number(std::string& out, double v, std::optional<int> precision) {
+namespace {
+
+constexpr char digit_pairs[] =
+    "00010203040506070809101112131415161718192021222324252627282930313233343536373839"
+    "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
+    "8081828384858687888990919293949596979899";
+
+/// Writes the 8 decimal digits of v < 10^8, leading zeros included: v / 10^6
+/// in 51-bit fixed point, two digits out per multiplication by 100 (the
+/// rounding up of 2^51 / 10^6 adds less than 0.06 of the last digit).
+void write_eight(char* out, std::uint32_t v) noexcept {
+    constexpr int shift = 51;
+    constexpr std::uint64_t mask = (std::uint64_t{1} << shift) - 1;
+    std::uint64_t f = v * ((std::uint64_t{1} << shift) / 1000000 + 1);
+    for (int i = 0; i < 8; i += 2) {
+        std::memcpy(out + i, digit_pairs + (f >> shift) * 2, 2);
+        f = (f & mask) * 100;
+    }
+}
+
+/// The decimal digits of a significand (at most 17 of them, as Dragonbox
+/// gives for a double), written as 17 with leading zeros and copied in
+/// fixed-size blocks: no loop or call depends on the digit count.
+class significand_digits {
+public:
+    explicit significand_digits(std::uint64_t v) noexcept {
+        const std::uint64_t low16 = v % 10000000000000000;
+        digits_[0] = static_cast<char>('0' + v / 10000000000000000);
+        write_eight(digits_ + 1, static_cast<std::uint32_t>(low16 / 100000000));
+        write_eight(digits_ + 9, static_cast<std::uint32_t>(low16 % 100000000));
+        const int bits = 64 - std::countl_zero(v | 1);
+        count_ = (bits * 1233 >> 12) + 1;  // floor(log10(2^bits)) + 1: exact or one too many
+        if (v < powers_of_ten[count_ - 1]) --count_;
+    }
+    int count() const noexcept { return count_; }
+    /// Writes digits [from, count) at out, and up to 16 bytes of scratch after them.
+    void copy(char* out, int from = 0) const noexcept {
+        std::memcpy(out, digits_ + 17 - count_ + from, 17);
+    }
+
+private:
+    static constexpr std::uint64_t powers_of_ten[18] = {1,
+                                                        10,
+                                                        100,
+                                                        1000,
+                                                        10000,
+                                                        100000,
+                                                        1000000,
+                                                        10000000,
+                                                        100000000,
+                                                        1000000000,
+                                                        10000000000,
+                                                        100000000000,
+                                                        1000000000000,
+                                                        10000000000000,
+                                                        100000000000000,
+                                                        1000000000000000,
+                                                        10000000000000000,
+                                                        100000000000000000};
+    char digits_[17 + 17];  // the copies may read past the digits
+    int count_;
+};
+
+/// The shortest digits that read back to v (Dragonbox, the algorithm fmt's
+/// "{}" uses), laid out exactly as "{}" lays them out: fixed notation for
+/// decimal exponents in [-4, 16), else d.ddde+XX. Writing the layout here
+/// rather than through fmt's general formatter takes a third off the
+/// writers' hot path (tests/layout_test.cpp compares it with fmt). `out`
+/// needs 40 bytes of room.
+char* write_shortest(char* out, double v) noexcept {
+    if (v < 0) *out++ = '-', v = -v;
+    const auto decimal = fmt::detail::dragonbox::to_decimal(v);
+    const significand_digits digits(decimal.significand);
+    const int count = digits.count();
+    const int point = decimal.exponent + count;  // digits before the decimal point
+    if (point - 1 < -4 || point - 1 >= 16) {     // d[.ddd]e+XX
+        digits.copy(out + 1);
+        out[0] = out[1];
+        out[1] = '.';
+        out += count > 1 ? count + 1 : 1;
+        *out++ = 'e';
+        *out++ = point - 1 < 0 ? '-' : '+';
+        const int exponent = std::abs(point - 1);
+        if (exponent >= 100) *out++ = static_cast<char>('0' + exponent / 100);
+        std::memcpy(out, digit_pairs + exponent % 100 * 2, 2);
+        return out + 2;
+    }
+    if (decimal.exponent >= 0) {  // ddd000
+        digits.copy(out);
+        std::memset(out + count, '0', static_cast<std::size_t>(decimal.exponent));
+        return out + point;
+    }
+    if (point > 0) {  // dd.ddd
+        digits.copy(out);
+        out[point] = '.';
+        digits.copy(out + point + 1, point);
+        return out + count + 1;
+    }
+    out[0] = '0', out[1] = '.';  // 0.000ddd
+    std::memset(out + 2, '0', 8);   // -point <= 4
+    digits.copy(out + 2 - point);
+    return out + 2 - point + count;
+}
+
+}  // namespace
+
+char* write_number(char* out, double v, std::optional<int> precision) {
     // Every number keyrot prints passes here: a NaN or infinity would be a
     // bug upstream, and must stop the output rather than reach it.
     if (!std::isfinite(v)) throw std::logic_error(fmt::format("non-finite number {} in the output", v));
     if (v == 0) v = 0;  // drops the sign of -0
-    // Formatted into a local buffer with compiled format strings: this is
-    // the hot path of every writer.
-    char buf[400];  // the longest "{:.17f}" of a double is 327 characters
     if (!precision) {
         // Whole numbers (frame numbers, most keys' zeros) take the integer path.
         if (std::fabs(v) < 1e15 && v == std::trunc(v)) {
             const fmt::format_int digits(static_cast<long long>(v));
-            out.append(digits.data(), digits.size());
-            return;
+            std::memcpy(out, digits.data(), digits.size());
+            return out + digits.size();
         }
-        out.append(buf, fmt::format_to(buf, FMT_COMPILE("{}"), v));
-        return;
+        return write_shortest(out, v);
     }
-    char* end = fmt::format_to(buf, FMT_COMPILE("{:.{}f}"), v, *precision);
-    if (std::find(buf, end, '.') != end) {
+    char* const begin = out;
+    char* end = fmt::format_to(out, FMT_COMPILE("{:.{}f}"), v, *precision);
+    if (std::find(begin, end, '.') != end) {
         while (end[-1] == '0') --end;
         if (end[-1] == '.') --end;
     }
-    const char* begin = buf;
-    if (end - begin == 2 && begin[0] == '-' && begin[1] == '0') ++begin;  // -0.0001 at 2 digits
-    out.append(begin, static_cast<std::size_t>(end - begin));
+    if (end - begin == 2 && begin[0] == '-' && begin[1] == '0') *begin = '0', --end;  // -0.0001 at 2 digits
+    return end;
 }
 
-
-}  // namespace keyrot
-
-#include <charconv>
-
-namespace keyrot {
+void append_number(std::string& out, double v, std::optional<int> precision) {
+    char buf[max_number_chars];
+    out.append(buf, write_number(buf, v, precision));
+}
 
 std::string_view trim(std::string_view text) noexcept {
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);

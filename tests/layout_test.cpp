@@ -1,9 +1,13 @@
 #include "keyrot/layout.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <random>
 #include <vector>
 
 using namespace keyrot;
@@ -30,6 +34,29 @@ TEST_CASE("numbers print in the shortest form that reads back") {
     }
 }
 
+TEST_CASE("the shortest form is laid out exactly as fmt's \"{}\"") {
+    // keyrot writes the shortest digits itself; fmt's general formatter is
+    // the independent reference for the layout (fixed within 1e-4..1e16,
+    // exponents with a sign and at least two digits).
+    const auto same_as_fmt = [](double v) {
+        CAPTURE(v);
+        REQUIRE(number(v) == fmt::format("{}", v));
+    };
+    for (double v : {1e-5, 1.5e-5, 1e-4, 0.000123, 1e15, 1.5e15, 9999999999999998.0, 1e16, 1.25e16, 1e17, 1e100,
+                     1.2345e-100, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308, 0.1, 123.456, -0.5})
+        same_as_fmt(v);
+    std::mt19937_64 gen(11);
+    std::uniform_int_distribution<std::uint64_t> bits;
+    std::uniform_real_distribution<double> unit(-1, 1), exponent(-30, 30);
+    for (int i = 0; i < 200000; ++i) {
+        const double any = std::bit_cast<double>(bits(gen));  // every binary exponent
+        if (std::isfinite(any) && any != 0) same_as_fmt(any);
+        same_as_fmt(unit(gen));                                 // quaternion and axis components
+        same_as_fmt(unit(gen) * std::pow(10.0, exponent(gen)));  // every decimal layout
+        same_as_fmt(static_cast<double>(i) / 24);               // frame times
+    }
+}
+
 TEST_CASE("--precision rounds and drops trailing zeros, never -0") {
     CHECK(number(0.38268343236508978, 4) == "0.3827");
     CHECK(number(0.5, 4) == "0.5");
@@ -39,6 +66,10 @@ TEST_CASE("--precision rounds and drops trailing zeros, never -0") {
     CHECK(number(2.0, 0) == "2");
     CHECK(number(-1.25, 1) == "-1.2");  // round half to even on the binary value
     CHECK(number(123.0, 3) == "123");
+    const std::string longest = number(-1.7976931348623157e308, 17);  // the widest number there is
+    CHECK(longest.size() == 1 + 309);
+    CHECK(longest.size() <= max_number_chars);
+    CHECK(std::stod(longest) == -1.7976931348623157e308);
 }
 
 TEST_CASE("CSV columns per representation and quaternion order") {

@@ -44,15 +44,14 @@ struct rotation_values {
 /// `translation` is used by rep::matrix4 only (zero when absent).
 rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts);
 
-/// Appends v in the shortest form that reads back to the same double, or
-/// rounded to `precision` decimals without trailing zeros. Never "-0".
-/// Throws std::logic_error for NaN or infinity (a bug, never printed).
+/// Writes v at `out` (room for max_number_chars) in the shortest form that
+/// reads back to the same double, or rounded to `precision` decimals without
+/// trailing zeros; returns the end. Never "-0". Throws std::logic_error for
+/// NaN or infinity (a bug, never printed).
+char* write_number(char* out, double v, std::optional<int> precision);
+inline constexpr std::size_t max_number_chars = 330;  // "{:.17f}" of -1.8e308 has 327
+/// write_number, appended to `out`.
 void append_number(std::string& out, double v, std::optional<int> precision);
-
-
-}  // namespace keyrot
-
-namespace keyrot {
 
 /// A number as written in CSV cells and on the command line: optional
 /// surrounding spaces, an optional '+', then what std::from_chars reads.
