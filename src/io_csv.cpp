@@ -242,6 +242,14 @@ public:
         fmt::format_to(std::back_inserter(out_), "{}\n", fmt::join(header, ","));
     }
 
+    csv_writer(const csv_writer& other, std::string& out)
+        : out_(out), info_(other.info_), opts_(other.opts_), warn_(other.warn_), name_(other.name_),
+          frame_(other.frame_), time_(other.time_), translation_(other.translation_) {}
+
+    std::unique_ptr<table_writer> row_writer(std::string& out) const override {
+        return std::make_unique<csv_writer>(*this, out);
+    }
+
     void begin_track(const std::string& name, bool) override { name_ = name; }
 
     void row(const sample& s) override {

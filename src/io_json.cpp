@@ -326,6 +326,15 @@ public:
         if (info.named) out_ += ", \"tracks\": {";
     }
 
+    json_writer(const json_writer& other, std::string& out)
+        : out_(out), info_(other.info_), opts_(other.opts_), warn_(other.warn_), lines_(other.lines_),
+          name_(other.name_), translation_(other.translation_) {}
+
+    std::unique_ptr<table_writer> row_writer(std::string& out) const override {
+        if (!lines_) return nullptr;  // commas between rows, brackets around tracks
+        return std::make_unique<json_writer>(*this, out);
+    }
+
     void begin_track(const std::string& name, bool has_translation) override {
         name_ = json_quote(name);
         translation_ = has_translation && opts_.representation != rep::matrix4;

@@ -47,10 +47,14 @@ struct document_facts {
         tracks.back().last = std::move(k);
     }
 
+    bool translation() const {
+        return std::any_of(tracks.begin(), tracks.end(), [](const track_facts& t) { return t.translation; });
+    }
+
     table_info table(const options& o) const {
         table_info info;
         info.named = named;
-        for (const auto& t : tracks) info.translation = info.translation || t.translation;
+        info.translation = translation();
         if (o.cmd == command::resample) {
             info.fps = o.fps;
             info.how = o.how;
@@ -61,14 +65,6 @@ struct document_facts {
             info.rows_name = frames ? "frames" : "keys";
         }
         return info;
-    }
-
-    /// About how many rows the output will have.
-    double rows(const options& o) const {
-        double n = 0;
-        for (const auto& t : tracks)
-            n += o.cmd == command::resample ? (t.last.time - t.first.time) * o.fps + 1 : static_cast<double>(t.keys);
-        return n;
     }
 
     /// resample: the frame grid of every track is within bounds.
@@ -167,65 +163,85 @@ private:
 
 sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
 
-/// Rows are formatted on a second thread (for large outputs; small ones,
-/// where starting it costs more than it saves, inline): the caller, reading
-/// and resampling, hands over batches of rows in order; a bounded queue
-/// keeps memory constant. Errors of the formatting thread come back from
-/// the next call, or from finish().
+/// Rows are formatted on other threads once the output is large (for small
+/// ones starting threads costs more than it saves): the caller, reading and
+/// resampling, hands over batches of rows in order; a bounded queue keeps
+/// memory constant. Where rows stand alone (CSV, NDJSON) each thread formats
+/// whole batches with its own row_writer and the texts are put out in batch
+/// order; JSON rows go through the one writer, on one thread. Errors of the
+/// formatting threads come back from the next call, or from finish().
 class row_pipeline {
 public:
-    row_pipeline(table_writer& writer, chunked_output& out, bool threaded) : writer_(writer), out_(out) {
-        if (!threaded) return;
-        batch_.rows.reserve(batch_rows);
-        thread_ = std::thread([this] { consume(); });
-    }
+    row_pipeline(table_writer& writer, chunked_output& out, unsigned threads)
+        : writer_(writer), out_(out), threads_(threads) {}
     row_pipeline(const row_pipeline&) = delete;
     row_pipeline& operator=(const row_pipeline&) = delete;
     ~row_pipeline() {
-        if (thread_.joinable()) {
-            stop();
-            thread_.join();
-        }
+        stop();
+        for (auto& w : workers_) w->thread.join();
     }
     void begin_track(const std::string& name, bool translation) {
-        if (!thread_.joinable()) return writer_.begin_track(name, translation);
-        batch_.begins.push_back({batch_.rows.size(), name, translation});
+        current_ = track_begin{batch_.rows.size(), name, translation};
+        if (workers_.empty()) return writer_.begin_track(name, translation);
+        batch_.begins.push_back(*current_);
     }
     void row(const sample& s) {
-        if (!thread_.joinable()) {
+        if (workers_.empty()) {
             writer_.row(s);
             out_.maybe_flush();
+            if (++inline_rows_ == inline_limit) start();
             return;
         }
         batch_.rows.push_back(s);
         if (batch_.rows.size() == batch_rows) hand_over();
     }
     void finish() {
-        if (!thread_.joinable()) return;
+        if (workers_.empty()) return;
         hand_over();
         stop();
-        thread_.join();
+        for (auto& w : workers_) w->thread.join();
+        workers_.clear();
         if (failure_) std::rethrow_exception(failure_);
     }
 
 private:
-    static constexpr std::size_t batch_rows = 4096, max_batches = 4;
+    static constexpr std::size_t inline_limit = 20000, batch_rows = 4096, max_batches = 6;
     struct track_begin {
         std::size_t before_row;
         std::string name;
         bool translation;
     };
     struct batch {
+        std::size_t number = 0;
+        std::optional<track_begin> resumed;  // the track the rows before the first begin belong to
         std::vector<sample> rows;
         std::vector<track_begin> begins;
     };
+    struct worker {
+        std::unique_ptr<table_writer> own;  // formats into text; none: the one writer, straight out
+        std::string text;
+        std::thread thread;
+    };
 
+    void start() {
+        for (unsigned i = 0; i < threads_; ++i) {
+            auto w = std::make_unique<worker>();
+            if (threads_ > 1) w->own = writer_.row_writer(w->text);
+            if (i > 0 && !w->own) break;
+            workers_.push_back(std::move(w));
+        }
+        batch_.rows.reserve(batch_rows);
+        if (current_) batch_.resumed = track_begin{0, current_->name, current_->translation};
+        for (auto& w : workers_) w->thread = std::thread([this, &w = *w] { consume(w); });
+    }
     void hand_over() {
         std::unique_lock lock(mutex_);
         changed_.wait(lock, [this] { return queue_.size() < max_batches || failure_; });
         if (failure_) std::rethrow_exception(failure_);
         queue_.push_back(std::move(batch_));
         batch_ = batch{};
+        batch_.number = ++batches_;
+        if (current_) batch_.resumed = track_begin{0, current_->name, current_->translation};
         batch_.rows.reserve(batch_rows);
         changed_.notify_all();
     }
@@ -234,72 +250,107 @@ private:
         done_ = true;
         changed_.notify_all();
     }
-    void consume() {
+    void consume(worker& w) {
         try {
-            for (;;) {
-                batch b;
+            for (batch b; take(b);) {
+                format(b, w);
+                if (!w.own) continue;
                 {
                     std::unique_lock lock(mutex_);
-                    changed_.wait(lock, [this] { return !queue_.empty() || done_; });
-                    if (queue_.empty()) return;
-                    b = std::move(queue_.front());
-                    queue_.pop_front();
-                    changed_.notify_all();
+                    changed_.wait(lock, [&] { return written_ == b.number || failure_; });
+                    if (failure_) return;
                 }
-                std::size_t next_begin = 0;
-                for (std::size_t i = 0; i <= b.rows.size(); ++i) {
-                    for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
-                        writer_.begin_track(b.begins[next_begin].name, b.begins[next_begin].translation);
-                    if (i == b.rows.size()) break;
-                    writer_.row(b.rows[i]);
-                    out_.maybe_flush();
-                }
+                out_.text() += w.text;  // this batch's turn: no other thread writes now
+                w.text.clear();
+                out_.maybe_flush();
+                const std::lock_guard lock(mutex_);
+                ++written_;
+                changed_.notify_all();
             }
         } catch (...) {
             const std::lock_guard lock(mutex_);
-            failure_ = std::current_exception();
+            if (!failure_) failure_ = std::current_exception();
             changed_.notify_all();
+        }
+    }
+    bool take(batch& b) {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return !queue_.empty() || done_ || failure_; });
+        if (queue_.empty() || failure_) return false;
+        b = std::move(queue_.front());
+        queue_.pop_front();
+        changed_.notify_all();
+        return true;
+    }
+    void format(const batch& b, worker& w) {
+        table_writer& writer = w.own ? *w.own : writer_;
+        if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->translation);
+        std::size_t next_begin = 0;
+        for (std::size_t i = 0; i <= b.rows.size(); ++i) {
+            for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
+                writer.begin_track(b.begins[next_begin].name, b.begins[next_begin].translation);
+            if (i == b.rows.size()) break;
+            writer.row(b.rows[i]);
+            if (!w.own) out_.maybe_flush();
         }
     }
 
     table_writer& writer_;
     chunked_output& out_;
+    unsigned threads_;
+    std::size_t inline_rows_ = 0;
     batch batch_;
+    std::optional<track_begin> current_;
+    std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
     std::mutex mutex_;
     std::condition_variable changed_;
     bool done_ = false;
     std::exception_ptr failure_;
-    std::thread thread_;  // started once everything else exists
+    std::vector<std::unique_ptr<worker>> workers_;  // their threads start once everything else exists
 };
 
+/// Threads for formatting a large output: two keep up with one reading
+/// and resampling thread; more than four do not help.
+unsigned formatting_threads() { return std::clamp(std::thread::hardware_concurrency(), 2u, 4u); }
+
 /// Pass 2 over a line-based input whose tracks come one after another:
-/// each track is resampled (or converted) as its keys arrive.
-void stream_rows(const options& o, const input_source& src, format f, const document_facts& d, row_pipeline& writer,
-                 warnings& warn) {
+/// each track is resampled (or converted) as its keys arrive. With `known`
+/// (pass 1's facts) the keys are known to be good; without (one pass), each
+/// track is taken to have translations if its first key has one, and the
+/// keys are checked as pass 1 checks them. Returns the facts seen, or
+/// nothing when a track comes back after another one began.
+std::optional<document_facts> stream_rows(const options& o, const input_source& src, format f,
+                                          const document_facts* known, row_pipeline& rows, warnings& warn) {
     const auto stream = src.open();
     const read_options ro = reading(o, src);
     const auto reader = make_key_reader(*stream, f, ro, warn);
-    const auto row = [&](const sample& s) { writer.row(s); };
+    const auto row = [&](const sample& s) { rows.row(s); };
     std::optional<track_resampler> resampler;
-    std::size_t track = 0;
+    document_facts seen;
+    std::set<std::string> names;
     std::string name;
     raw_key raw;
-    bool started = false;
     while (reader->next(name, raw)) {
-        const key k = make_key(raw, ro.settings, warn);
-        if (!started || name != d.tracks[track].name) {
+        key k = make_key(raw, ro.settings, warn);
+        const bool same_track = !seen.tracks.empty() && seen.tracks.back().name == name;
+        if (!known && same_track) check_order(seen.tracks.back().last, k, src.source());
+        if (!known && !same_track && !names.insert(name).second) return std::nullopt;
+        if (!known && o.cmd == command::resample)  // before the key's frames: never hours of output
+            check_frame_range(same_track ? seen.tracks.back().first : k, k, name, resampling(o), src.source());
+        if (!same_track) {
             if (resampler) resampler->finish();
-            track += started ? 1 : 0;
-            started = true;
-            const auto& facts = d.tracks[track];
-            writer.begin_track(facts.name, facts.translation);
-            if (o.cmd == command::resample) resampler.emplace(resampling(o), facts.euler, facts.translation, row);
+            const bool translation = known ? known->tracks[seen.tracks.size()].translation : k.translation.has_value();
+            rows.begin_track(name, translation);
+            if (o.cmd == command::resample) resampler.emplace(resampling(o), ro.settings.euler, translation, row);
         }
         if (resampler) resampler->add(k);
         else row(key_row(k));
+        seen.add(name, ro.settings.euler, std::move(k));
     }
     if (resampler) resampler->finish();
+    seen.named = reader->named();
+    return seen;
 }
 
 /// The tracks of an input read whole.
@@ -317,11 +368,59 @@ void whole_rows(const options& o, const input& doc, row_pipeline& writer) {
     }
 }
 
+/// resample from line-based input into -o FILE in one pass. The writer
+/// needs facts before the first row that pass 1 would gather (track names,
+/// translations); they are guessed from the first key instead. When a guess
+/// proves wrong or anything fails, the temporary file is dropped and false
+/// returned: the two passes then give the output or the error they always
+/// give. Warnings are held back until the end for the same reason.
+bool resample_in_one_pass(const options& o, const input_source& src, format in_fmt, format out_fmt,
+                          const std::string& target, std::ostream& out, std::ostream& err) {
+    std::ostringstream held;
+    warnings warn(held, src.source());
+    try {
+        document_facts guess;
+        {
+            const auto stream = src.open();
+            const read_options ro = reading(o, src);
+            const auto reader = make_key_reader(*stream, in_fmt, ro, warn);
+            std::string name;
+            raw_key raw;
+            if (!reader->next(name, raw)) return false;
+            guess.add(name, ro.settings.euler, make_key(raw, ro.settings, warn));
+            guess.named = reader->named();
+        }
+        const write_options wopts = output_settings(o, guess.tracks.front().euler);
+        chunked_output sink(target, out);
+        const auto writer = make_writer(out_fmt, sink.text(), guess.table(o), wopts, warn);
+        std::optional<document_facts> seen;
+        {
+            row_pipeline rows(*writer, sink, formatting_threads());
+            seen = stream_rows(o, src, in_fmt, nullptr, rows, warn);
+            rows.finish();
+        }
+        if (!seen || seen->named != guess.named || seen->translation() != guess.translation()) return false;
+        for (const auto& t : seen->tracks)
+            if (t.translation != t.first.translation.has_value()) return false;
+        seen->check(o, src.source());
+        writer->finish();
+        sink.finish();
+    } catch (const error&) {
+        return false;  // the two passes say what is wrong, in their order
+    }
+    err << held.str();
+    return true;
+}
+
 /// resample or convert one input into `target` (a file) or `out`.
 void transform(const options& o, const input_source& src, format in_fmt, format out_fmt,
-               const std::optional<std::string>& target, std::ostream& out, warnings& warn) {
-    // Line-based input streams in two passes: everything is validated before
-    // the first byte is written, so an error never leaves partial output.
+               const std::optional<std::string>& target, std::ostream& out, std::ostream& err) {
+    if (target && o.cmd == command::resample && in_fmt != format::json &&
+        resample_in_one_pass(o, src, in_fmt, out_fmt, *target, out, err))
+        return;
+    // Otherwise everything is validated before the first byte is written,
+    // so that an error never leaves partial output (on standard output).
+    warnings warn(err, src.source());
     bool interleaved = in_fmt == format::json;
     document_facts d;
     std::optional<input> whole;
@@ -335,9 +434,9 @@ void transform(const options& o, const input_source& src, format in_fmt, format 
     chunked_output sink(target, out);
     const auto writer = make_writer(out_fmt, sink.text(), d.table(o), wopts, warn);
     {
-        row_pipeline rows(*writer, sink, d.rows(o) > 20000);
+        row_pipeline rows(*writer, sink, formatting_threads());
         if (whole) whole_rows(o, *whole, rows);
-        else stream_rows(o, src, in_fmt, d, rows, warn);
+        else stream_rows(o, src, in_fmt, &d, rows, warn);
         rows.finish();
     }
     writer->finish();
@@ -349,7 +448,6 @@ int transform_one(const options& o, const std::string& name, std::istream& in, s
     try {
         if (name == "-" && o.output_dir) throw usage_error("standard input ('-') cannot be used with --output-dir");
         const input_source src(name, in);
-        warnings warn(err, src.source());
         const format in_fmt = src.detect(o.from);
         std::optional<std::string> target;
         format out_fmt = o.to.value_or(in_fmt);
@@ -361,7 +459,7 @@ int transform_one(const options& o, const std::string& name, std::istream& in, s
             target = *o.output;
             if (!o.to) out_fmt = format_of_path(*target).value_or(in_fmt);
         }
-        transform(o, src, in_fmt, out_fmt, target, out, warn);
+        transform(o, src, in_fmt, out_fmt, target, out, err);
         return 0;
     } catch (const usage_error&) {
         throw;

@@ -23,6 +23,18 @@ for expected in *.err; do
     fi
 done
 
+# Into -o FILE, which resample writes in one pass (falling back to the two
+# passes on any error): the same one line, and no file.
+for expected in *.err; do
+    name=${expected%.err}
+    [[ -e $name ]] || continue
+    expect_error "$name -o" "$(cat "$expected")" -- "$keyrot" resample "$name" -o "$work/bad_out.csv"
+    if [[ -e $work/bad_out.csv || -n $(find "$work" -name '*.keyrot-*') ]]; then
+        fail "$name -o: output file left behind"
+        rm -f "$work/bad_out.csv"
+    fi
+done
+
 # The same inputs on standard input name <stdin>.
 expect_error "stdin" "keyrot: <stdin>:3: column 'qw': expected a finite number, got 'one'" -- \
     bash -c "'$keyrot' resample < not_a_number.csv"
@@ -43,8 +55,32 @@ for f in *; do
     fi
 done
 
-# A single 100 MB line (generated, not checked in), in CSV and in JSON.
+# resample -o FILE guesses the header from the first key (track names,
+# translation) to stream in one pass; where the guess is wrong the output
+# and the messages must still be those of the two passes on standard output.
 cd "$work" || exit 1
+printf 'time,qw,qx,qy,qz,tx,ty,tz\n0,1,0,0,0,,,\n1,0,0,0,1,1,2,3\n2,1,0,0,0,2,2,2\n' > late_translation.csv
+printf 'track,time,qw,qx,qy,qz,tx,ty,tz\na,0,1,0,0,0,,,\na,1,0,1,0,0,,,\nb,0,1,0,0,0,1,1,1\nb,1,0,0,1,0,2,2,2\n' \
+    > second_track_translation.csv
+printf 'track,time,qw,qx,qy,qz\na,0,1,0,0,0\nb,0,1,0,0,0\na,1,0,1,0,0\nb,1,0,0,1,0\n' > interleaved.csv
+printf 'time,qw,qx,qy,qz,extra\n0,2,0,0,0,x\n1,0,0,0,1,y\n' > warnings.csv
+for f in late_translation.csv second_track_translation.csv interleaved.csv warnings.csv "$tests"/../data/*.csv \
+    "$tests"/good/*.csv "$tests"/good/*.ndjson; do
+    for fps in 4 20000; do  # 20000: tens of thousands of rows, formatted on several threads
+        "$keyrot" resample "$f" --fps $fps --to csv >two.out 2>two.err
+        rc_two=$?
+        "$keyrot" resample "$f" --fps $fps -o one.csv 2>one.err
+        rc_one=$?
+        if [[ $rc_one == "$rc_two" ]] && cmp -s one.csv two.out && cmp -s one.err two.err; then
+            passed=$((passed + 1))
+        else
+            fail "one pass $(basename "$f") at $fps fps: status $rc_one (two passes: $rc_two), stderr [$(cat one.err)]"
+        fi
+        rm -f one.csv two.out
+    done
+done
+
+# A single 100 MB line (generated, not checked in), in CSV and in JSON.
 { printf 'time,qw,qx,qy,qz\n0,'; head -c 100000000 /dev/zero | tr '\0' '1'; printf ',0,0,0\n'; } > long_line.csv
 expect_error "100 MB CSV line" "keyrot: long_line.csv:2: column 'qw': expected a finite number, got '1111111111111111111111111111111111111111'" -- \
     "$keyrot" resample long_line.csv

@@ -89,6 +89,10 @@ public:
     virtual void begin_track(const std::string& name, bool has_translation) = 0;
     virtual void row(const sample& s) = 0;
     virtual void finish() = 0;
+    /// For formatting rows on several threads: a writer of the same rows into
+    /// `out` that writes nothing else (no header, nothing at finish), or
+    /// nullptr where a row's text depends on the rows before it (JSON).
+    virtual std::unique_ptr<table_writer> row_writer(std::string& out) const = 0;
 };
 
 /// A row's rotation values; Euler output warns once about gimbal lock.
