@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "fma_clones.hpp"
 #include "keyrot/tolerances.hpp"
 
 namespace keyrot {
@@ -41,7 +42,7 @@ namespace {
 
 /// x * (hi + lo), rounded once: hi + lo is pi/180 or 180/pi to 106 bits,
 /// so a unit conversion adds half an ulp, not one and a half.
-double scale(double x, double hi, double lo) noexcept {
+KEYROT_FMA_CLONES double scale(double x, double hi, double lo) noexcept {
     const double p = x * hi;
     return p + (std::fma(x, hi, -p) + x * lo);
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "fma_clones.hpp"
 #include "keyrot/tolerances.hpp"
 
 namespace keyrot {
@@ -46,7 +47,7 @@ slerp_segment::slerp_segment(quat a, quat b) noexcept : a_(a), b_(b) {
     half_lo_ = static_cast<double>(half - half_);
 }
 
-quat slerp_segment::at(double h) const noexcept {
+KEYROT_FMA_CLONES quat slerp_segment::at(double h) const noexcept {
     if (h == 0) return a_;
     if (h == 1) return b_;
     // h (hi + lo) = phi + phi_lo; sin and cos of phi corrected to first
@@ -62,7 +63,7 @@ quat slerp_segment::at(double h) const noexcept {
 
 quat slerp(quat a, quat b, double h) noexcept { return slerp_segment(a, b).at(h); }
 
-quat nlerp(quat a, quat b, double h) noexcept {
+KEYROT_FMA_CLONES quat nlerp(quat a, quat b, double h) noexcept {
     if (h == 0) return a;
     if (h == 1) return b;
     const double g = 1 - h;

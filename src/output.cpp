@@ -1,6 +1,7 @@
 #include "keyrot/output.hpp"
 
 #include <fmt/format.h>
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -21,9 +22,13 @@ output_file::output_file(std::string path) : path_(std::move(path)) {
         temp_.clear();
         fail(errno);
     }
-    // mkstemp creates the file 0600; give it the usual permissions.
-    const mode_t mask = ::umask(0);
-    ::umask(mask);
+    // mkstemp creates the file 0600; give it the usual permissions. umask
+    // can only be read by setting it: once, before --jobs threads could race.
+    static const mode_t mask = [] {
+        const mode_t m = ::umask(0);
+        ::umask(m);
+        return m;
+    }();
     ::fchmod(fd_, 0666 & ~mask);
 }
 
@@ -42,6 +47,10 @@ void output_file::write(std::string_view data) {
             fail(errno);
         }
         data.remove_prefix(static_cast<std::size_t>(n));
+        // Start writing back now, on this thread: renaming over an existing
+        // file makes ext4 write back all that is left at commit, alone.
+        ::sync_file_range(fd_, written_, n, SYNC_FILE_RANGE_WRITE);
+        written_ += n;
     }
 }
 

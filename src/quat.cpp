@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "fma_clones.hpp"
+
 namespace keyrot {
 
 vec3 operator+(vec3 a, vec3 b) noexcept { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
@@ -38,7 +40,7 @@ template double dot2<2>(const double (&)[2], const double (&)[2]) noexcept;
 template double dot2<3>(const double (&)[3], const double (&)[3]) noexcept;
 template double dot2<4>(const double (&)[4], const double (&)[4]) noexcept;
 
-quat operator*(quat a, quat b) noexcept {
+KEYROT_FMA_CLONES quat operator*(quat a, quat b) noexcept {
     return {dot2({a.w, -a.x, -a.y, -a.z}, {b.w, b.x, b.y, b.z}),
             dot2({a.w, a.x, a.y, -a.z}, {b.x, b.w, b.z, b.y}),
             dot2({a.w, -a.x, a.y, a.z}, {b.y, b.z, b.w, b.x}),

@@ -23,6 +23,7 @@ private:
 
     std::string path_, temp_;
     int fd_ = -1;
+    long long written_ = 0;
 };
 
 /// output_file(path), write(data), commit().
