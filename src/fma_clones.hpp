@@ -3,8 +3,18 @@
 // multiply-add instructions and without (x86-64's baseline has none, and
 // std::fma is then a call into libm), the clone chosen when keyrot loads.
 // std::fma is exact both ways and the build passes -ffp-contract=off, so the
-// clones give the same bits.
-#if defined(__x86_64__) && defined(__has_attribute)
+// clones give the same bits. Not under sanitizers: the choosing code runs
+// before their runtimes start (ThreadSanitizer crashes there); the
+// sanitizer build thus tests the plain clone, the release build the other.
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define KEYROT_SANITIZED
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define KEYROT_SANITIZED
+#endif
+#if defined(__x86_64__) && defined(__has_attribute) && !defined(KEYROT_SANITIZED)
 #if __has_attribute(target_clones)
 #define KEYROT_FMA_CLONES __attribute__((target_clones("fma", "default")))
 #endif

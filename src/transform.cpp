@@ -205,7 +205,7 @@ public:
     }
 
 private:
-    static constexpr std::size_t inline_limit = 20000, batch_rows = 4096, max_batches = 6;
+    static constexpr std::size_t inline_limit = 4096, batch_rows = 4096, max_batches = 6;
     struct track_begin {
         std::size_t before_row;
         std::string name;
