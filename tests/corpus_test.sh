@@ -80,6 +80,26 @@ for f in late_translation.csv second_track_translation.csv interleaved.csv warni
     done
 done
 
+# Formatted on several threads, batches must come out whole and in order:
+# each track's frames 0..20000 once each, in order, and a key exact.
+"$keyrot" resample "$tests/../data/walk.csv" --fps 20000 --rep quat -o threaded.csv
+"$keyrot" resample "$tests/../data/walk.csv" --fps 20000 --rep quat --to csv >threaded_stdout.csv
+"$keyrot" resample "$tests/../data/walk.csv" --fps 20000 --rep quat --to ndjson |
+    sed 's/^{"track": "\([a-z]*\)", "frame": \([0-9]*\), "time": [^,]*, "quat": \[\([^,]*\),.*/\1,\2,-,\3/' \
+        >threaded_ndjson.csv
+for f in threaded.csv threaded_stdout.csv threaded_ndjson.csv; do
+    if awk -F, '$1 == "track" { next }
+        $1 != track { if (track != "" && next_frame != 20001) bad = 1; track = $1; tracks = tracks $1 " "; next_frame = 0 }
+        $2 != next_frame { bad = 1 }
+        { next_frame++ }
+        $1 == "hip" && $2 == 10000 && $4 != "0.9961946980917455" { bad = 1 }
+        END { exit bad || next_frame != 20001 || tracks != "hip knee " }' "$f"; then
+        passed=$((passed + 1))
+    else
+        fail "$f: frames missing, repeated or out of order"
+    fi
+done
+
 # A single 100 MB line (generated, not checked in), in CSV and in JSON.
 { printf 'time,qw,qx,qy,qz\n0,'; head -c 100000000 /dev/zero | tr '\0' '1'; printf ',0,0,0\n'; } > long_line.csv
 expect_error "100 MB CSV line" "keyrot: long_line.csv:2: column 'qw': expected a finite number, got '1111111111111111111111111111111111111111'" -- \
