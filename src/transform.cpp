@@ -402,7 +402,6 @@ bool resample_in_one_pass(const options& o, const input_source& src, format in_f
         if (!seen || seen->named != guess.named || seen->translation() != guess.translation()) return false;
         for (const auto& t : seen->tracks)
             if (t.translation != t.first.translation.has_value()) return false;
-        seen->check(o, src.source());
         writer->finish();
         sink.finish();
     } catch (const error&) {
