@@ -1,48 +1,99 @@
 #include "keyrot/source.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <streambuf>
 
 #include "keyrot/error.hpp"
 
 namespace keyrot {
+namespace {
+
+std::string errno_text() { return std::strerror(errno); }
+
+/// Reads an open file from the start with pread, so that every stream on
+/// the same descriptor has its own position.
+class descriptor_buffer : public std::streambuf {
+public:
+    explicit descriptor_buffer(int fd) : fd_(fd) {}
+
+protected:
+    int_type underflow() override {
+        if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+        ssize_t got;
+        do got = ::pread(fd_, buffer_.data(), buffer_.size(), offset_);
+        while (got < 0 && errno == EINTR);
+        if (got <= 0) return traits_type::eof();  // a read error ends the input, as an ifstream's would
+        offset_ += got;
+        setg(buffer_.data(), buffer_.data(), buffer_.data() + got);
+        return traits_type::to_int_type(*gptr());
+    }
+
+private:
+    int fd_;
+    off_t offset_ = 0;
+    std::array<char, std::size_t{1} << 16> buffer_;
+};
+
+class descriptor_stream : public std::istream {
+public:
+    explicit descriptor_stream(int fd) : std::istream(nullptr), buffer_(fd) { rdbuf(&buffer_); }
+
+private:
+    descriptor_buffer buffer_;
+};
+
+/// Writes all of `size` bytes, or returns false with errno set.
+bool write_all(int fd, const char* data, std::size_t size) {
+    while (size > 0) {
+        const ssize_t put = ::write(fd, data, size);
+        if (put < 0 && errno == EINTR) continue;
+        if (put <= 0) return false;
+        data += put, size -= static_cast<std::size_t>(put);
+    }
+    return true;
+}
+
+}  // namespace
 
 input_source::input_source(const std::string& name, std::istream& stdin_stream)
-    : name_(name), source_(name == "-" ? "<stdin>" : name), path_(name) {
+    : name_(name), source_(name == "-" ? "<stdin>" : name) {
     if (name != "-") {
-        std::error_code ec;
-        if (std::filesystem::is_directory(name, ec)) throw error(fmt::format("cannot read '{}': it is a directory", name));
-        if (!std::ifstream(name, std::ios::binary)) throw error(fmt::format("cannot read '{}': {}", name, std::strerror(errno)));
+        fd_ = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd_ < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
+        struct stat st {};
+        if (::fstat(fd_, &st) == 0 && S_ISDIR(st.st_mode)) {
+            ::close(fd_);
+            throw error(fmt::format("cannot read '{}': it is a directory", name));
+        }
         return;
     }
-    // Standard input goes to a temporary file (not memory), which is removed
-    // when the source is done with.
-    path_ = (std::filesystem::temp_directory_path() / "keyrot-stdin-XXXXXX").string();
-    const int fd = ::mkstemp(path_.data());
-    if (fd < 0) throw error(fmt::format("cannot store standard input in '{}': {}", path_, std::strerror(errno)));
-    ::close(fd);
-    temporary_ = true;
-    std::ofstream copy(path_, std::ios::binary);
-    copy << stdin_stream.rdbuf();
-    copy.flush();
-    if (!copy) throw error(fmt::format("cannot store standard input in '{}': {}", path_, std::strerror(errno)));
+    // Standard input goes to a temporary file (not memory), removed at once
+    // so that nothing is left behind however the process ends.
+    std::string path = (std::filesystem::temp_directory_path() / "keyrot-stdin-XXXXXX").string();
+    fd_ = ::mkstemp(path.data());
+    if (fd_ < 0) throw error(fmt::format("cannot store standard input in '{}': {}", path, errno_text()));
+    ::unlink(path.c_str());
+    std::array<char, std::size_t{1} << 16> chunk;
+    while (stdin_stream.read(chunk.data(), chunk.size()) || stdin_stream.gcount() > 0) {
+        if (!write_all(fd_, chunk.data(), static_cast<std::size_t>(stdin_stream.gcount()))) {
+            const std::string reason = errno_text();
+            ::close(fd_);
+            throw error(fmt::format("cannot store standard input in '{}': {}", path, reason));
+        }
+    }
 }
 
-input_source::~input_source() {
-    if (temporary_) std::remove(path_.c_str());
-}
+input_source::~input_source() { ::close(fd_); }
 
-std::unique_ptr<std::istream> input_source::open() const {
-    auto in = std::make_unique<std::ifstream>(path_, std::ios::binary);
-    if (!*in) throw error(fmt::format("cannot read '{}': {}", source_, std::strerror(errno)));
-    return in;
-}
+std::unique_ptr<std::istream> input_source::open() const { return std::make_unique<descriptor_stream>(fd_); }
 
 format input_source::detect(std::optional<format> given) const {
     if (given) return *given;

@@ -35,9 +35,23 @@ for expected in *.err; do
     fi
 done
 
-# The same inputs on standard input name <stdin>.
+# The same inputs on standard input name <stdin>. Standard input is kept in
+# a temporary file in $TMPDIR, which no way of ending may leave behind: an
+# error, empty input, success, a closed pipe.
+mkdir "$work/tmp"
+export TMPDIR=$work/tmp
 expect_error "stdin" "keyrot: <stdin>:3: column 'qw': expected a finite number, got 'one'" -- \
     bash -c "'$keyrot' resample < not_a_number.csv"
+expect_error "empty stdin" "keyrot: <stdin>: empty input: expected a CSV header and keys" -- \
+    bash -c "'$keyrot' resample < /dev/null"
+"$keyrot" resample < "$tests/../data/turntable.csv" >/dev/null
+"$keyrot" resample --fps 100000 < "$tests/../data/turntable.csv" | head -n 1 >/dev/null
+if [[ -z $(ls -A "$work/tmp") ]]; then
+    passed=$((passed + 1))
+else
+    fail "standard input left in $TMPDIR: $(ls -A "$work/tmp")"
+fi
+unset TMPDIR
 
 # Accepted quietly: every variant resamples to seed 000's example.
 want="frame,time,qw,qx,qy,qz

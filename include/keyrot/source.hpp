@@ -1,7 +1,7 @@
 #pragma once
 // The inputs of a command: files, or standard input copied to a temporary
-// file, so that an input can be read twice (validated first, then streamed)
-// in constant memory.
+// file (unlinked at once), so that an input can be read twice (validated
+// first, then streamed) in constant memory.
 #include <istream>
 #include <memory>
 #include <optional>
@@ -22,14 +22,14 @@ public:
 
     const std::string& name() const noexcept { return name_; }      ///< as given
     const std::string& source() const noexcept { return source_; }  ///< for messages: the path or "<stdin>"
-    /// A fresh stream from the start.
+    /// A fresh stream from the start (each has its own position).
     std::unique_ptr<std::istream> open() const;
     /// `given` (--from), else by the name's extension, else sniffed from the content.
     format detect(std::optional<format> given) const;
 
 private:
-    std::string name_, source_, path_;
-    bool temporary_ = false;
+    std::string name_, source_;
+    int fd_ = -1;
 };
 
 }  // namespace keyrot
