@@ -135,7 +135,7 @@ public:
         write_eight(digits_ + 9, static_cast<std::uint32_t>(low16 % 100000000));
         const int bits = 64 - std::countl_zero(v | 1);
         count_ = (bits * 1233 >> 12) + 1;  // floor(log10(2^bits)) + 1: exact or one too many
-        if (v < powers_of_ten[count_ - 1]) --count_;
+        if ((v | 1) < powers_of_ten[count_ - 1]) --count_;  // (v | 1: zero has one digit)
     }
     int count() const noexcept { return count_; }
     /// Writes digits [from, count) at out, and up to 16 bytes of scratch after them.
@@ -165,6 +165,14 @@ private:
     char digits_[17 + 17];  // the copies may read past the digits
     int count_;
 };
+
+/// |v| < 10^17. `out` needs 18 bytes of room.
+char* write_integer(char* out, std::int64_t v) noexcept {
+    if (v < 0) *out++ = '-';
+    const significand_digits digits(static_cast<std::uint64_t>(v < 0 ? -v : v));
+    digits.copy(out);
+    return out + digits.count();
+}
 
 /// The shortest digits that read back to v (Dragonbox, the algorithm fmt's
 /// "{}" uses), laid out exactly as "{}" lays them out: fixed notation for
@@ -216,10 +224,9 @@ char* write_number(char* out, double v, std::optional<int> precision) {
     if (v == 0) v = 0;  // drops the sign of -0
     if (!precision) {
         // Whole numbers (frame numbers, most keys' zeros) take the integer path.
-        if (std::fabs(v) < 1e15 && v == std::trunc(v)) {
-            const fmt::format_int digits(static_cast<long long>(v));
-            std::memcpy(out, digits.data(), digits.size());
-            return out + digits.size();
+        if (std::fabs(v) < 1e15) {
+            const auto whole = static_cast<std::int64_t>(v);
+            if (static_cast<double>(whole) == v) return write_integer(out, whole);
         }
         return write_shortest(out, v);
     }

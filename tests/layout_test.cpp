@@ -45,6 +45,8 @@ TEST_CASE("the shortest form is laid out exactly as fmt's \"{}\"") {
     for (double v : {1e-5, 1.5e-5, 1e-4, 0.000123, 1e15, 1.5e15, 9999999999999998.0, 1e16, 1.25e16, 1e17, 1e100,
                      1.2345e-100, 5e-324, 2.2250738585072014e-308, 1.7976931348623157e308, 0.1, 123.456, -0.5})
         same_as_fmt(v);
+    for (double p = 1; p < 1e18; p *= 10)  // whole numbers: the integer path up to 1e15
+        for (double v : {p - 1, p, p + 1, -p, 1 - p}) same_as_fmt(v);
     std::mt19937_64 gen(11);
     std::uniform_int_distribution<std::uint64_t> bits;
     std::uniform_real_distribution<double> unit(-1, 1), exponent(-30, 30);
@@ -54,6 +56,7 @@ TEST_CASE("the shortest form is laid out exactly as fmt's \"{}\"") {
         same_as_fmt(unit(gen));                                 // quaternion and axis components
         same_as_fmt(unit(gen) * std::pow(10.0, exponent(gen)));  // every decimal layout
         same_as_fmt(static_cast<double>(i) / 24);               // frame times
+        same_as_fmt(std::trunc(unit(gen) * std::pow(10.0, exponent(gen) / 2)) + 0.0);  // whole numbers (+ 0.0: not -0)
     }
 }
 
