@@ -1,11 +1,12 @@
 // keyrot's benchmark (run by hand, not by the tests): generates quaternion
-// tracks, runs `keyrot resample track.csv -o out.csv --rep axis-angle` and,
+// tracks (numbers in shortest form, and in numpy's savetxt form), runs `keyrot resample track.csv -o out.csv --rep axis-angle` and,
 // where python3 has numpy and scipy, the script a scipy user would write
 // (loadtxt -> Slerp -> as_rotvec -> savetxt), several times each, and
 // prints median wall time, frames per second, peak RSS and the ratio.
 //
 // Usage: keyrot_bench [--runs N] [--keyrot PATH] [--python PATH] [--dir DIR]
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -59,22 +60,32 @@ struct summary {
     bool ok;
 };
 
-summary repeat(const std::vector<std::string>& argv, int runs) {
-    std::vector<double> times;
-    long peak = 0;
-    bool ok = true;
+/// Runs each command `runs` times, taking turns (a b a b ...) so that a
+/// shared machine's slow moments fall on all of them alike.
+std::vector<summary> repeat(const std::vector<std::vector<std::string>>& commands, int runs) {
+    std::vector<std::vector<double>> times(commands.size());
+    std::vector<summary> out(commands.size(), summary{0, 0, true});
     for (int i = 0; i < runs; ++i) {
-        const measurement m = run(argv);
-        times.push_back(m.seconds);
-        peak = std::max(peak, m.peak_kb);
-        ok = ok && m.status == 0;
+        for (std::size_t c = 0; c < commands.size(); ++c) {
+            const measurement m = run(commands[c]);
+            times[c].push_back(m.seconds);
+            out[c].peak_kb = std::max(out[c].peak_kb, m.peak_kb);
+            out[c].ok = out[c].ok && m.status == 0;
+        }
     }
-    std::sort(times.begin(), times.end());
-    return {times[times.size() / 2], peak, ok};
+    for (std::size_t c = 0; c < commands.size(); ++c) {
+        std::sort(times[c].begin(), times[c].end());
+        out[c].median_s = times[c][times[c].size() / 2];
+    }
+    return out;
 }
 
+/// How a track's numbers are written: shortest round-trip ("{}"), or as
+/// numpy's savetxt writes them by default ("%.18e", 19 digits).
+enum class digits { shortest, numpy };
+
 /// A track of `keys` random unit quaternions, 5 frames apart at 24 fps.
-std::size_t write_track(const std::string& path, std::size_t keys) {
+std::size_t write_track(const std::string& path, std::size_t keys, digits style = digits::shortest) {
     std::mt19937_64 gen(7);
     std::normal_distribution<double> n;
     // Line by line: Linux counts the spawning process's own peak into the
@@ -84,8 +95,9 @@ std::size_t write_track(const std::string& path, std::size_t keys) {
     for (std::size_t i = 0; i < keys; ++i) {
         double q[4] = {n(gen), n(gen), n(gen), n(gen)};
         const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-        out << fmt::format("{},{},{},{},{}\n", static_cast<double>(i) * 5 / 24, q[0] / len, q[1] / len, q[2] / len,
-                           q[3] / len);
+        const double row[5] = {static_cast<double>(i) * 5 / 24, q[0] / len, q[1] / len, q[2] / len, q[3] / len};
+        out << (style == digits::shortest ? fmt::format("{}\n", fmt::join(row, ","))
+                                          : fmt::format("{:.18e}\n", fmt::join(row, ",")));
     }
     return (keys - 1) * 5 + 1;  // frames
 }
@@ -136,28 +148,37 @@ int main(int argc, char** argv) {
     fmt::print("keyrot benchmark: {} cores, {}, median of {} runs\n", std::thread::hardware_concurrency(), cpu_model(),
                runs);
     fmt::print("{:<34} {:>10} {:>12} {:>10}\n", "", "median s", "frames/s", "peak RSS");
-    for (const std::size_t keys : {std::size_t{200000}, std::size_t{800000}}) {
-        const std::string track = fmt::format("{}/track{}.csv", dir, keys);
-        const std::size_t frames = write_track(track, keys);
-        const auto mine = repeat({keyrot, "resample", track, "-o", dir + "/out.csv", "--rep", "axis-angle"}, runs);
-        fmt::print("{:<34} {:>10.3f} {:>10.2f} M {:>7.1f} MB{}\n",
-                   fmt::format("keyrot, {:.1f}M frames", static_cast<double>(frames) / 1e6), mine.median_s,
-                   static_cast<double>(frames) / mine.median_s / 1e6, static_cast<double>(mine.peak_kb) / 1024,
-                   mine.ok ? "" : "  FAILED");
-        fmt::print("{:<34} {:>10.3f}\n", "  per million frames", mine.median_s * 1e6 / static_cast<double>(frames));
+    struct input {
+        std::size_t keys;
+        digits style;
+    };
+    const auto print_row = [](const std::string& name, const summary& m, std::size_t frames) {
+        fmt::print("{:<34} {:>10.3f} {:>10.2f} M {:>7.1f} MB{}\n", name, m.median_s,
+                   static_cast<double>(frames) / m.median_s / 1e6, static_cast<double>(m.peak_kb) / 1024,
+                   m.ok ? "" : "  FAILED");
+    };
+    for (const input in : {input{200000, digits::shortest}, input{200000, digits::numpy}, input{800000, digits::shortest}}) {
+        const bool numpy = in.style == digits::numpy;
+        const std::string track = fmt::format("{}/track{}{}.csv", dir, in.keys, numpy ? "_numpy" : "");
+        const std::size_t frames = write_track(track, in.keys, in.style);
+        std::vector<std::vector<std::string>> commands = {
+            {keyrot, "resample", track, "-o", dir + "/out.csv", "--rep", "axis-angle"}};
+        // The scipy script at 4M frames would take most of a minute a run.
+        const bool with_scipy = !python.empty() && in.keys <= 200000;
+        if (with_scipy) commands.push_back({python, script, track, dir + "/out_scipy.csv"});
+        const auto results = repeat(commands, runs);
+        print_row(fmt::format("keyrot, {:.1f}M frames{}", static_cast<double>(frames) / 1e6, numpy ? ", %.18e" : ""),
+                  results[0], frames);
+        fmt::print("{:<34} {:>10.3f}\n", "  per million frames", results[0].median_s * 1e6 / static_cast<double>(frames));
         if (python.empty()) {
             fmt::print("  scipy: not run (no python3 with numpy and scipy; apt-get install python3-scipy)\n");
-            continue;
+        } else if (with_scipy) {
+            print_row("scipy script (same turns)", results[1], frames);
+            fmt::print("{:<34} {:>10.1f}x\n", "  ratio (scipy / keyrot)", results[1].median_s / results[0].median_s);
         }
-        if (keys > 200000) continue;  // the scipy script at 4M frames takes most of a minute a run
-        const auto theirs = repeat({python, script, track, dir + "/out_scipy.csv"}, runs);
-        fmt::print("{:<34} {:>10.3f} {:>10.2f} M {:>7.1f} MB{}\n", "scipy script", theirs.median_s,
-                   static_cast<double>(frames) / theirs.median_s / 1e6, static_cast<double>(theirs.peak_kb) / 1024,
-                   theirs.ok ? "" : "  FAILED");
-        fmt::print("{:<34} {:>10.1f}x\n", "  ratio (scipy / keyrot)", theirs.median_s / mine.median_s);
     }
     const std::string small = dir + "/ten.csv";
     write_track(small, 10);
-    const auto start = repeat({keyrot, "resample", small, "-o", dir + "/ten_out.csv"}, runs * 10);
+    const auto start = repeat({{keyrot, "resample", small, "-o", dir + "/ten_out.csv"}}, runs * 10)[0];
     fmt::print("{:<34} {:>10.2f} ms\n", "keyrot start-up, 10 keys", start.median_s * 1e3);
 }
