@@ -19,10 +19,11 @@ namespace {
 std::string errno_text() { return std::strerror(errno); }
 
 /// Reads an open file from the start with pread, so that every stream on
-/// the same descriptor has its own position.
+/// the same descriptor has its own position. A read error throws
+/// keyrot::error naming `source`.
 class descriptor_buffer : public std::streambuf {
 public:
-    explicit descriptor_buffer(int fd) : fd_(fd) {}
+    descriptor_buffer(int fd, const std::string& source) : fd_(fd), source_(source) {}
 
 protected:
     int_type underflow() override {
@@ -30,7 +31,8 @@ protected:
         ssize_t got;
         do got = ::pread(fd_, buffer_.data(), buffer_.size(), offset_);
         while (got < 0 && errno == EINTR);
-        if (got <= 0) return traits_type::eof();  // a read error ends the input, as an ifstream's would
+        if (got < 0) throw error(fmt::format("cannot read '{}': {}", source_, errno_text()));
+        if (got == 0) return traits_type::eof();
         offset_ += got;
         setg(buffer_.data(), buffer_.data(), buffer_.data() + got);
         return traits_type::to_int_type(*gptr());
@@ -38,13 +40,17 @@ protected:
 
 private:
     int fd_;
+    const std::string& source_;
     off_t offset_ = 0;
     std::array<char, std::size_t{1} << 16> buffer_;
 };
 
 class descriptor_stream : public std::istream {
 public:
-    explicit descriptor_stream(int fd) : std::istream(nullptr), buffer_(fd) { rdbuf(&buffer_); }
+    descriptor_stream(int fd, const std::string& source) : std::istream(nullptr), buffer_(fd, source) {
+        rdbuf(&buffer_);
+        exceptions(badbit);  // lets the buffer's error through istream's catch
+    }
 
 private:
     descriptor_buffer buffer_;
@@ -78,7 +84,7 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
     // Standard input goes to a temporary file (not memory), removed at once
     // so that nothing is left behind however the process ends.
     std::string path = (std::filesystem::temp_directory_path() / "keyrot-stdin-XXXXXX").string();
-    fd_ = ::mkstemp(path.data());
+    fd_ = ::mkostemp(path.data(), O_CLOEXEC);
     if (fd_ < 0) throw error(fmt::format("cannot store standard input in '{}': {}", path, errno_text()));
     ::unlink(path.c_str());
     std::array<char, std::size_t{1} << 16> chunk;
@@ -93,7 +99,7 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
 
 input_source::~input_source() { ::close(fd_); }
 
-std::unique_ptr<std::istream> input_source::open() const { return std::make_unique<descriptor_stream>(fd_); }
+std::unique_ptr<std::istream> input_source::open() const { return std::make_unique<descriptor_stream>(fd_, source_); }
 
 format input_source::detect(std::optional<format> given) const {
     if (given) return *given;

@@ -133,6 +133,11 @@ else
     fail "temporary file left behind: $(ls -A "$work")"
 fi
 
+# A read error is one clean error, not a short input: reading
+# /proc/self/mem from offset 0 (never mapped) fails with EIO.
+expect_error "read error" "keyrot: cannot read '/proc/self/mem': Input/output error" -- \
+    "$keyrot" resample /proc/self/mem
+
 # A closed pipe ends keyrot quietly.
 "$keyrot" resample "$tests/../data/turntable.csv" --fps 100000 2>"$work/pipe.err" | head -n 1 >/dev/null
 if [[ ! -s $work/pipe.err ]]; then

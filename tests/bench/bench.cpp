@@ -43,6 +43,7 @@ measurement run(const std::vector<std::string>& argv) {
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+    ::sync();  // no earlier run's output still being written back during this one
     const auto start = std::chrono::steady_clock::now();
     pid_t pid;
     if (posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ) != 0) return {0, 0, -1};
