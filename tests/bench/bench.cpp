@@ -1,7 +1,8 @@
 // keyrot's benchmark (run by hand, not by the tests): generates quaternion
-// tracks (numbers in shortest form, and in numpy's savetxt form), runs `keyrot resample track.csv -o out.csv --rep axis-angle` and,
-// where python3 has numpy and scipy, the script a scipy user would write
-// (loadtxt -> Slerp -> as_rotvec -> savetxt), several times each, and
+// tracks (numbers in shortest form, and in numpy's savetxt form), runs
+// `keyrot resample track.csv -o out.csv --rep axis-angle` and, where python3
+// has numpy and scipy, the script a scipy user would write (loadtxt ->
+// Slerp -> as_rotvec -> savetxt), several times each, taking turns, and
 // prints median wall time, frames per second, peak RSS and the ratio.
 //
 // Usage: keyrot_bench [--runs N] [--keyrot PATH] [--python PATH] [--dir DIR]
