@@ -414,11 +414,12 @@ bool resample_in_one_pass(const options& o, const input_source& src, format in_f
 /// resample or convert one input into `target` (a file) or `out`.
 void transform(const options& o, const input_source& src, format in_fmt, format out_fmt,
                const std::optional<std::string>& target, std::ostream& out, std::ostream& err) {
-    if (target && o.cmd == command::resample && in_fmt != format::json &&
+    if (target && replaced_on_commit(*target) && o.cmd == command::resample && in_fmt != format::json &&
         resample_in_one_pass(o, src, in_fmt, out_fmt, *target, out, err))
         return;
     // Otherwise everything is validated before the first byte is written,
-    // so that an error never leaves partial output (on standard output).
+    // so that an error never leaves partial output (on standard output, or
+    // in a pipe or device named by -o).
     warnings warn(err, src.source());
     bool interleaved = in_fmt == format::json;
     document_facts d;

@@ -133,6 +133,39 @@ else
     fail "temporary file left behind: $(ls -A "$work")"
 fi
 
+# -o into a pipe or a device writes into it, after the input is known good
+# (nothing can be taken back there), and leaves it what it was; through a
+# symbolic link, the file it names is replaced, keeping its mode, and the
+# link stays.
+mkfifo "$work/fifo"
+"$keyrot" resample "$tests/../data/turntable.csv" --to csv >"$work/want.csv"
+for input in "$tests/../data/turntable.csv" "$tests/bad/not_a_number.csv"; do
+    timeout 20 cat "$work/fifo" >"$work/from_fifo.csv" &  # timeout: were the FIFO replaced, no writer would come
+    reader=$!
+    "$keyrot" resample "$input" -o "$work/fifo" 2>/dev/null
+    rc=$?
+    [[ $rc == 2 ]] && : >"$work/fifo"  # never opened: let the reader end
+    wait $reader
+    if [[ $input == *turntable* ]]; then expected=$work/want.csv; else expected=/dev/null; fi
+    if [[ -p $work/fifo ]] && cmp -s "$work/from_fifo.csv" "$expected"; then
+        passed=$((passed + 1))
+    else
+        fail "-o FIFO, $(basename "$input"): status $rc, $(wc -c <"$work/from_fifo.csv") bytes read, $(stat -c %F "$work/fifo")"
+    fi
+done
+expect_error "device target" "keyrot: cannot write '/dev/full': No space left on device" -- \
+    "$keyrot" resample "$tests/../data/turntable.csv" -o /dev/full
+if [[ -c /dev/full ]]; then passed=$((passed + 1)); else fail "/dev/full is no longer a device"; fi
+echo precious >"$work/real.csv"
+chmod 640 "$work/real.csv"
+ln -s real.csv "$work/link.csv"
+"$keyrot" resample "$tests/../data/turntable.csv" -o "$work/link.csv"
+if [[ -L $work/link.csv && $(stat -c %a "$work/real.csv") == 640 ]] && cmp -s "$work/real.csv" "$work/want.csv"; then
+    passed=$((passed + 1))
+else
+    fail "-o symbolic link: $(ls -l "$work/link.csv" "$work/real.csv")"
+fi
+
 # A read error is one clean error, not a short input: reading
 # /proc/self/mem from offset 0 (never mapped) fails with EIO.
 expect_error "read error" "keyrot: cannot read '/proc/self/mem': Input/output error" -- \
