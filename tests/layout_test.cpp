@@ -47,6 +47,10 @@ TEST_CASE("the shortest form is laid out exactly as fmt's \"{}\"") {
         same_as_fmt(v);
     for (double p = 1; p < 1e18; p *= 10)  // whole numbers: the integer path up to 1e15
         for (double v : {p - 1, p, p + 1, -p, 1 - p}) same_as_fmt(v);
+    for (double v = 0; v < 1e8; v += 997) {  // every digit in every place of both 8-digit halves
+        same_as_fmt(v);
+        same_as_fmt(v * 1e7 + (1e8 - 1 - v));
+    }
     std::mt19937_64 gen(11);
     std::uniform_int_distribution<std::uint64_t> bits;
     std::uniform_real_distribution<double> unit(-1, 1), exponent(-30, 30);
