@@ -274,7 +274,7 @@ public:
             }
         }
         end[-1] = '\n';  // in place of the last comma
-        out_.append(buf, end);
+        out_.append(buf, static_cast<std::size_t>(end - buf));  // (pointer, length): not the iterator overload
     }
 
     void finish() override {}

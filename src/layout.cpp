@@ -270,7 +270,7 @@ char* write_number(char* out, double v, std::optional<int> precision) {
 
 void append_number(std::string& out, double v, std::optional<int> precision) {
     char buf[max_number_chars];
-    out.append(buf, write_number(buf, v, precision));
+    out.append(buf, static_cast<std::size_t>(write_number(buf, v, precision) - buf));
 }
 
 std::string_view trim(std::string_view text) noexcept {

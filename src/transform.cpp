@@ -113,8 +113,9 @@ document_facts scan(const options& o, const input_source& src, format f, warning
 }
 
 /// Where output text goes: -o FILE (a temporary file renamed on success) or
-/// a stream, in chunks of about a megabyte. A full chunk is written by a
-/// second thread while the writer fills the next one.
+/// a stream, in chunks of about a megabyte or in the batches formatting
+/// threads put out. Each is written by a second thread while the next one
+/// fills.
 class chunked_output {
 public:
     chunked_output(const std::optional<std::string>& path, std::ostream& out) : out_(out) {
@@ -128,10 +129,18 @@ public:
     }
     std::string& text() noexcept { return text_; }
     void maybe_flush() {
-        if (text_.size() < chunk) return;
+        if (text_.size() >= chunk) put(text_);
+    }
+    /// Puts out `text` after text(), which it leaves empty, and gives it an
+    /// empty buffer in exchange: a batch formatted elsewhere is not copied.
+    void put(std::string& text) {
         wait();
-        std::swap(text_, spare_);
-        text_.clear();
+        if (&text != &text_ && !text_.empty()) {
+            write(text_);
+            text_.clear();
+        }
+        std::swap(text, spare_);
+        text.clear();
         writing_ = std::async(std::launch::async, [this] { write(spare_); });
     }
     void finish() {
@@ -260,9 +269,7 @@ private:
                     changed_.wait(lock, [&] { return written_ == b.number || failure_; });
                     if (failure_) return;
                 }
-                out_.text() += w.text;  // this batch's turn: no other thread writes now
-                w.text.clear();
-                out_.maybe_flush();
+                out_.put(w.text);  // this batch's turn: no other thread writes now
                 const std::lock_guard lock(mutex_);
                 ++written_;
                 changed_.notify_all();
