@@ -8,12 +8,12 @@
 #include <deque>
 #include <exception>
 #include <filesystem>
-#include <future>
 #include <mutex>
 #include <ostream>
 #include <set>
 #include <sstream>
 #include <thread>
+#include <utility>
 
 #include "commands.hpp"
 #include "keyrot/output.hpp"
@@ -114,8 +114,8 @@ document_facts scan(const options& o, const input_source& src, format f, warning
 
 /// Where output text goes: -o FILE (a temporary file renamed on success) or
 /// a stream, in chunks of about a megabyte or in the batches formatting
-/// threads put out. Each is written by a second thread while the next one
-/// fills.
+/// threads put out. Each is written by a second thread, started with the
+/// first chunk and kept to the end, while the next one fills.
 class chunked_output {
 public:
     chunked_output(const std::optional<std::string>& path, std::ostream& out) : out_(out) {
@@ -125,7 +125,13 @@ public:
     chunked_output(const chunked_output&) = delete;
     chunked_output& operator=(const chunked_output&) = delete;
     ~chunked_output() {
-        if (writing_.valid()) writing_.wait();  // an error elsewhere: let the write end before the file goes
+        if (!writer_.joinable()) return;
+        {
+            const std::lock_guard lock(mutex_);
+            stopping_ = true;
+            changed_.notify_all();
+        }
+        writer_.join();  // after a write under way (an error elsewhere): it ends before the file goes
     }
     std::string& text() noexcept { return text_; }
     void maybe_flush() {
@@ -133,6 +139,7 @@ public:
     }
     /// Puts out `text` after text(), which it leaves empty, and gives it an
     /// empty buffer in exchange: a batch formatted elsewhere is not copied.
+    /// One caller at a time.
     void put(std::string& text) {
         wait();
         if (&text != &text_ && !text_.empty()) {
@@ -141,7 +148,10 @@ public:
         }
         std::swap(text, spare_);
         text.clear();
-        writing_ = std::async(std::launch::async, [this] { write(spare_); });
+        if (!writer_.joinable()) writer_ = std::thread([this] { write_spares(); });
+        const std::lock_guard lock(mutex_);
+        spare_full_ = true;
+        changed_.notify_all();
     }
     void finish() {
         wait();
@@ -151,8 +161,29 @@ public:
 
 private:
     static constexpr std::size_t chunk = std::size_t{1} << 20;
+    /// Until the writing thread is done with spare_; rethrows its error.
     void wait() {
-        if (writing_.valid()) writing_.get();  // rethrows a write error
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return !spare_full_; });
+        if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+    }
+    void write_spares() {
+        std::unique_lock lock(mutex_);
+        for (;;) {
+            changed_.wait(lock, [this] { return spare_full_ || stopping_; });
+            if (!spare_full_) return;
+            lock.unlock();
+            std::exception_ptr failure;
+            try {
+                write(spare_);
+            } catch (...) {
+                failure = std::current_exception();
+            }
+            lock.lock();
+            failure_ = failure;
+            spare_full_ = false;
+            changed_.notify_all();
+        }
     }
     void write(const std::string& text) {
         if (file_) {
@@ -167,7 +198,11 @@ private:
     std::ostream& out_;
     std::optional<output_file> file_;
     std::string text_, spare_;
-    std::future<void> writing_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    bool spare_full_ = false, stopping_ = false;  // under mutex_
+    std::exception_ptr failure_;                  // under mutex_
+    std::thread writer_;
 };
 
 sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
