@@ -7,8 +7,10 @@
 
 #include <array>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <streambuf>
 
 #include "keyrot/error.hpp"
@@ -23,7 +25,7 @@ std::string errno_text() { return std::strerror(errno); }
 /// keyrot::error naming `source`.
 class descriptor_buffer : public std::streambuf {
 public:
-    descriptor_buffer(int fd, const std::string& source) : fd_(fd), source_(source) {}
+    descriptor_buffer(int fd, off_t start, const std::string& source) : fd_(fd), source_(source), offset_(start) {}
 
 protected:
     int_type underflow() override {
@@ -41,13 +43,14 @@ protected:
 private:
     int fd_;
     const std::string& source_;
-    off_t offset_ = 0;
+    off_t offset_;
     std::array<char, std::size_t{1} << 16> buffer_;
 };
 
 class descriptor_stream : public std::istream {
 public:
-    descriptor_stream(int fd, const std::string& source) : std::istream(nullptr), buffer_(fd, source) {
+    descriptor_stream(int fd, off_t start, const std::string& source)
+        : std::istream(nullptr), buffer_(fd, start, source) {
         rdbuf(&buffer_);
         exceptions(badbit);  // lets the buffer's error through istream's catch
     }
@@ -81,9 +84,25 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
         }
         return;
     }
-    // Standard input goes to a temporary file (not memory), removed at once
-    // so that nothing is left behind however the process ends.
-    std::string path = (std::filesystem::temp_directory_path() / "keyrot-stdin-XXXXXX").string();
+    // A file on the process's standard input is read in place, from where
+    // its offset stands (as cat would); anything else goes to a temporary
+    // file (not memory), removed at once so that nothing is left behind
+    // however the process ends.
+    struct stat st {};
+    if (&stdin_stream == &std::cin && ::fstat(STDIN_FILENO, &st) == 0 && S_ISREG(st.st_mode)) {
+        start_ = ::lseek(STDIN_FILENO, 0, SEEK_CUR);
+        fd_ = ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0);
+        if (start_ >= 0 && fd_ >= 0) return;
+        throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
+    }
+    std::error_code no_directory;
+    const auto directory = std::filesystem::temp_directory_path(no_directory);
+    if (no_directory) {
+        const char* tmpdir = std::getenv("TMPDIR");
+        throw error(fmt::format("cannot store standard input in a temporary file: {}{}",
+                                tmpdir ? fmt::format("$TMPDIR '{}': ", tmpdir) : "", no_directory.message()));
+    }
+    std::string path = (directory / "keyrot-stdin-XXXXXX").string();
     fd_ = ::mkostemp(path.data(), O_CLOEXEC);
     if (fd_ < 0) throw error(fmt::format("cannot store standard input in '{}': {}", path, errno_text()));
     ::unlink(path.c_str());
@@ -99,7 +118,7 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
 
 input_source::~input_source() { ::close(fd_); }
 
-std::unique_ptr<std::istream> input_source::open() const { return std::make_unique<descriptor_stream>(fd_, source_); }
+std::unique_ptr<std::istream> input_source::open() const { return std::make_unique<descriptor_stream>(fd_, start_, source_); }
 
 format input_source::detect(std::optional<format> given) const {
     if (given) return *given;

@@ -35,23 +35,38 @@ for expected in *.err; do
     fi
 done
 
-# The same inputs on standard input name <stdin>. Standard input is kept in
-# a temporary file in $TMPDIR, which no way of ending may leave behind: an
-# error, empty input, success, a closed pipe.
+# The same inputs on standard input name <stdin>, read in place from a file
+# or else kept in a temporary file in $TMPDIR, which no way of ending may
+# leave behind: an error, empty input, success, a closed pipe.
 mkdir "$work/tmp"
 export TMPDIR=$work/tmp
 expect_error "stdin" "keyrot: <stdin>:3: column 'qw': expected a finite number, got 'one'" -- \
     bash -c "'$keyrot' resample < not_a_number.csv"
+expect_error "stdin pipe" "keyrot: <stdin>:3: column 'qw': expected a finite number, got 'one'" -- \
+    bash -c "cat not_a_number.csv | '$keyrot' resample"
 expect_error "empty stdin" "keyrot: <stdin>: empty input: expected a CSV header and keys" -- \
     bash -c "'$keyrot' resample < /dev/null"
-"$keyrot" resample < "$tests/../data/turntable.csv" >/dev/null
-"$keyrot" resample --fps 100000 < "$tests/../data/turntable.csv" | head -n 1 >/dev/null
+cat "$tests/../data/turntable.csv" | "$keyrot" resample >/dev/null
+cat "$tests/../data/turntable.csv" | "$keyrot" resample --fps 100000 | head -n 1 >/dev/null
 if [[ -z $(ls -A "$work/tmp") ]]; then
     passed=$((passed + 1))
 else
     fail "standard input left in $TMPDIR: $(ls -A "$work/tmp")"
 fi
 unset TMPDIR
+
+# A file on standard input is read in place, from where its offset stands
+# (here after a line the shell's read took): no temporary file, so an
+# unusable $TMPDIR does not matter; a pipe needs one, and says so.
+{ echo "not a header"; cat "$tests/../data/walk.csv"; } > "$work/after_a_line.csv"
+expect "stdin file in place" 0 "$("$keyrot" resample "$tests/../data/walk.csv")" -- \
+    bash -c "{ IFS= read -r line; TMPDIR=/nonexistent '$keyrot' resample; } < '$work/after_a_line.csv'"
+expect "stdin file in place, -o" 0 "$("$keyrot" resample "$tests/../data/walk.csv" --rep euler --euler XYZ)" -- \
+    bash -c "{ IFS= read -r line; TMPDIR=/nonexistent '$keyrot' resample -o '$work/in_place.csv' --rep euler \
+        --euler XYZ && cat '$work/in_place.csv'; } < '$work/after_a_line.csv'"
+expect_error "stdin pipe, no temporary directory" \
+    "keyrot: cannot store standard input in a temporary file: \$TMPDIR '/nonexistent': No such file or directory" -- \
+    bash -c "cat '$tests/../data/walk.csv' | TMPDIR=/nonexistent '$keyrot' resample"
 
 # Accepted quietly: every variant resamples to seed 000's example.
 want="frame,time,qw,qx,qy,qz

@@ -1,7 +1,9 @@
 #pragma once
-// The inputs of a command: files, or standard input copied to a temporary
-// file (unlinked at once), so that an input can be read twice (validated
-// first, then streamed) in constant memory.
+// The inputs of a command: files, a file on standard input, or other
+// standard input copied to a temporary file (unlinked at once), so that an
+// input can be read twice (validated first, then streamed) in constant memory.
+#include <sys/types.h>
+
 #include <istream>
 #include <memory>
 #include <optional>
@@ -13,7 +15,8 @@ namespace keyrot {
 
 class input_source {
 public:
-    /// `name` is a path or "-" (standard input, read from `stdin_stream`).
+    /// `name` is a path or "-" (standard input, read from `stdin_stream`; in
+    /// place when that is std::cin and the process's standard input a file).
     /// Throws keyrot::error ("cannot read 'x.csv': No such file or directory").
     input_source(const std::string& name, std::istream& stdin_stream);
     input_source(const input_source&) = delete;
@@ -30,6 +33,7 @@ public:
 private:
     std::string name_, source_;
     int fd_ = -1;
+    off_t start_ = 0;  // where the input begins in fd_
 };
 
 }  // namespace keyrot
