@@ -2,9 +2,13 @@
 // first byte picks the command and flags, the rest is standard input. Any
 // exception but keyrot::error, a sanitizer report, or a message that is not
 // one printable "keyrot: " line is a finding.
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <iostream>
 #include <sstream>
 
 #include "check.hpp"
@@ -26,10 +30,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.fps = (pick & 0x80u) ? 30 : 24;
     o.precision = (pick & 0x08u) ? std::optional<int>(3) : std::nullopt;
     o.max_frames = 1e5;  // keeps each run short; the limit itself is tested elsewhere
-    std::istringstream in(std::string(fuzz::text(data + 1, size - 1)));
+    // Standard input is a file in memory, which keyrot reads in place: no
+    // temporary file on disk for every run.
+    static const int input = [] {
+        const int fd = ::memfd_create("fuzz_cli stdin", 0);
+        fuzz::require(fd >= 0 && ::dup2(fd, STDIN_FILENO) == STDIN_FILENO);
+        return fd;
+    }();
+    const auto rest = static_cast<off_t>(size - 1);
+    fuzz::require(::ftruncate(input, 0) == 0 && ::pwrite(input, data + 1, size - 1, 0) == rest &&
+                  ::lseek(input, 0, SEEK_SET) == 0);
     std::ostringstream out, err;
     try {
-        run(o, in, out, err);
+        run(o, std::cin, out, err);
     } catch (const usage_error&) {
     }
     fuzz::check_output(err.str());
