@@ -88,12 +88,16 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
     // its offset stands (as cat would); anything else goes to a temporary
     // file (not memory), removed at once so that nothing is left behind
     // however the process ends.
-    struct stat st {};
-    if (&stdin_stream == &std::cin && ::fstat(STDIN_FILENO, &st) == 0 && S_ISREG(st.st_mode)) {
-        start_ = ::lseek(STDIN_FILENO, 0, SEEK_CUR);
-        fd_ = ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0);
-        if (start_ >= 0 && fd_ >= 0) return;
-        throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
+    if (&stdin_stream == &std::cin) {
+        struct stat st {};
+        if (::fstat(STDIN_FILENO, &st) != 0) throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
+        if (S_ISDIR(st.st_mode)) throw error("cannot read '<stdin>': it is a directory");
+        if (S_ISREG(st.st_mode)) {
+            start_ = ::lseek(STDIN_FILENO, 0, SEEK_CUR);
+            fd_ = ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0);
+            if (start_ >= 0 && fd_ >= 0) return;
+            throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
+        }
     }
     std::error_code no_directory;
     const auto directory = std::filesystem::temp_directory_path(no_directory);

@@ -64,6 +64,9 @@ expect "stdin file in place" 0 "$("$keyrot" resample "$tests/../data/walk.csv")"
 expect "stdin file in place, -o" 0 "$("$keyrot" resample "$tests/../data/walk.csv" --rep euler --euler XYZ)" -- \
     bash -c "{ IFS= read -r line; TMPDIR=/nonexistent '$keyrot' resample -o '$work/in_place.csv' --rep euler \
         --euler XYZ && cat '$work/in_place.csv'; } < '$work/after_a_line.csv'"
+expect_error "stdin a directory" "keyrot: cannot read '<stdin>': it is a directory" -- \
+    bash -c "'$keyrot' resample < '$work'"
+expect_error "stdin closed" "keyrot: cannot read '<stdin>': Bad file descriptor" -- bash -c "'$keyrot' resample <&-"
 expect_error "stdin pipe, no temporary directory" \
     "keyrot: cannot store standard input in a temporary file: \$TMPDIR '/nonexistent': No such file or directory" -- \
     bash -c "cat '$tests/../data/walk.csv' | TMPDIR=/nonexistent '$keyrot' resample"
