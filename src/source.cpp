@@ -122,7 +122,9 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
 
 input_source::~input_source() { ::close(fd_); }
 
-std::unique_ptr<std::istream> input_source::open() const { return std::make_unique<descriptor_stream>(fd_, start_, source_); }
+std::unique_ptr<std::istream> input_source::open() const {
+    return std::make_unique<descriptor_stream>(fd_, start_, source_);
+}
 
 format input_source::detect(std::optional<format> given) const {
     if (given) return *given;
