@@ -94,9 +94,9 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
         if (S_ISDIR(st.st_mode)) throw error("cannot read '<stdin>': it is a directory");
         if (S_ISREG(st.st_mode)) {
             start_ = ::lseek(STDIN_FILENO, 0, SEEK_CUR);
-            fd_ = ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0);
-            if (start_ >= 0 && fd_ >= 0) return;
-            throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
+            if (start_ >= 0) fd_ = ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0);
+            if (fd_ < 0) throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
+            return;
         }
     }
     std::error_code no_directory;
