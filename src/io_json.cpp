@@ -2,6 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <array>
+#include <concepts>
+#include <string_view>
+
 #include <nlohmann/json.hpp>
 
 namespace keyrot {
@@ -91,7 +96,7 @@ public:
                 const char* names[] = {"w", "x", "y", "z"};
                 for (std::size_t i = 0; i < 4; ++i) {
                     if (!q.contains(names[i])) fail(fmt::format("'quat' object: missing '{}': expected w x y z", names[i]));
-                    k.values[i] = number(q.at(names[i]), fmt::format("quat.{}", names[i]));
+                    k.values[i] = number(q.at(names[i]), [&] { return fmt::format("quat.{}", names[i]); });
                 }
             } else {
                 const auto v = numbers(q, "quat", 4);
@@ -102,16 +107,16 @@ public:
             k.kind = rep::axis_angle;
             if (!obj_.contains("angle")) fail("'axis' without 'angle'");
             const auto v = numbers(obj_.at("axis"), "axis", 3);
-            std::copy(v.begin(), v.end(), k.values.begin());
+            std::copy_n(v.begin(), 3, k.values.begin());
             k.values[3] = number(obj_.at("angle"), "angle");
         } else if (obj_.contains("rotvec")) {
             k.kind = rep::rotvec;
             const auto v = numbers(obj_.at("rotvec"), "rotvec", 3);
-            std::copy(v.begin(), v.end(), k.values.begin());
+            std::copy_n(v.begin(), 3, k.values.begin());
         } else if (obj_.contains("euler")) {
             k.kind = rep::euler;
             const auto v = numbers(obj_.at("euler"), "euler", 3);
-            std::copy(v.begin(), v.end(), k.values.begin());
+            std::copy_n(v.begin(), 3, k.values.begin());
         } else {
             read_matrix(k);
         }
@@ -125,27 +130,37 @@ public:
 private:
     [[noreturn]] void fail(const std::string& message) const { throw input_error(where(source_, at_), message); }
 
-    double number(const json& j, const std::string& field) const {
+    // Messages name the field: `field` is its name, or a callable that
+    // spells the name out ("quat[2]"), called only when there is an error.
+    double number(const json& j, const std::invocable auto& field) const {
         if (!j.is_number())
-            fail(fmt::format("'{}': expected a number, got {}{}", field, type_name(j),
+            fail(fmt::format("'{}': expected a number, got {}{}", field(), type_name(j),
                              j.is_string() ? fmt::format(" \"{}\"", j.get_ref<const std::string&>().substr(0, 40)) : ""));
         const double v = j.get<double>();
-        if (!std::isfinite(v)) fail(fmt::format("'{}': expected a finite number, got {}", field, v));
+        if (!std::isfinite(v)) fail(fmt::format("'{}': expected a finite number, got {}", field(), v));
         return v;
     }
-
-    std::optional<double> optional_number(const char* field) const {
-        if (!obj_.contains(field)) return std::nullopt;
-        return number(obj_.at(field), field);
+    double number(const json& j, std::string_view field) const {
+        return number(j, [field] { return field; });
     }
 
-    std::vector<double> numbers(const json& j, const std::string& field, std::size_t n) const {
+    std::optional<double> optional_number(std::string_view field) const {
+        const auto it = obj_.find(field);
+        if (it == obj_.end()) return std::nullopt;
+        return number(*it, field);
+    }
+
+    /// The first n (at most 4) elements are the numbers.
+    std::array<double, 4> numbers(const json& j, const std::invocable auto& field, std::size_t n) const {
         if (!j.is_array() || j.size() != n)
-            fail(fmt::format("'{}': expected an array of {} numbers, got {}", field, n,
+            fail(fmt::format("'{}': expected an array of {} numbers, got {}", field(), n,
                              j.is_array() ? fmt::format("{} elements", j.size()) : type_name(j)));
-        std::vector<double> out;
-        for (std::size_t i = 0; i < n; ++i) out.push_back(number(j[i], fmt::format("{}[{}]", field, i)));
+        std::array<double, 4> out{};
+        for (std::size_t i = 0; i < n; ++i) out[i] = number(j[i], [&] { return fmt::format("{}[{}]", field(), i); });
         return out;
+    }
+    std::array<double, 4> numbers(const json& j, std::string_view field, std::size_t n) const {
+        return numbers(j, [field] { return field; }, n);
     }
 
     void read_matrix(raw_key& k) const {
@@ -156,8 +171,8 @@ private:
         const std::size_t n = m.size();
         k.kind = n == 4 ? rep::matrix4 : rep::matrix;
         for (std::size_t r = 0; r < n; ++r) {
-            const auto row = numbers(m[r], fmt::format("matrix[{}]", r), n);
-            std::copy(row.begin(), row.end(), k.values.begin() + static_cast<std::ptrdiff_t>(r * n));
+            const auto row = numbers(m[r], [r] { return fmt::format("matrix[{}]", r); }, n);
+            std::copy_n(row.begin(), n, k.values.begin() + static_cast<std::ptrdiff_t>(r * n));
         }
     }
 
@@ -278,18 +293,18 @@ public:
             if (!lines_.next(line)) return false;
         } while (trim(line).empty());
         const std::size_t line_no = lines_.number();
-        const std::string where = fmt::format("{}:{}", opts_.source, line_no);
+        const auto where = [&] { return fmt::format("{}:{}", opts_.source, line_no); };
         const json j = parse(line, opts_.source, line_no);
         const bool has_track = j.is_object() && j.contains("track");
         if (line_no_first_ == 0) line_no_first_ = line_no, named_ = has_track;
         if (has_track != named_)
-            throw input_error(where, "some lines have a 'track' and some do not: expected all or none");
+            throw input_error(where(), "some lines have a 'track' and some do not: expected all or none");
         track.clear();
         if (has_track) {
             if (!j.at("track").is_string())
-                throw input_error(where, fmt::format("'track': expected a string, got {}", type_name(j.at("track"))));
+                throw input_error(where(), fmt::format("'track': expected a string, got {}", type_name(j.at("track"))));
             track = j.at("track").get<std::string>();
-            check_track_name(track, where);
+            check_track_name(track, where());
         }
         k = key_object_reader(j, opts_.source, location{line_no, {}}, opts_.order, true).read();
         return true;

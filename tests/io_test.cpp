@@ -161,6 +161,30 @@ TEST_CASE("JSON errors name the key path and what was expected") {
     CHECK(error_of("42", format::json) == "in: expected a JSON object or array, got number");
 }
 
+TEST_CASE("JSON errors name the field down to the element, as a JSON path") {
+    const auto field_error = [](const std::string& key) {
+        return error_of(R"({"keys": [)" + key + "]}", format::json);
+    };
+    CHECK(field_error(R"({"time": 0, "quat": [1, 0, "x", 0]})") == "in: keys[0]: 'quat[2]': expected a number, got string \"x\"");
+    CHECK(field_error(R"({"time": 0, "quat": {"w": 1, "x": 0, "y": null, "z": 0}})") ==
+          "in: keys[0]: 'quat.y': expected a number, got null");
+    CHECK(field_error(R"({"time": 0, "quat": {"w": 1, "x": 0, "z": 0}})") ==
+          "in: keys[0]: 'quat' object: missing 'y': expected w x y z");
+    CHECK(field_error(R"({"time": 0, "axis": [0, 0, true], "angle": 90})") ==
+          "in: keys[0]: 'axis[2]': expected a number, got boolean");
+    CHECK(field_error(R"({"time": 0, "axis": [0, 0, 1], "angle": "90"})") ==
+          "in: keys[0]: 'angle': expected a number, got string \"90\"");
+    CHECK(field_error(R"({"time": 0, "rotvec": [0, [0], 0]})") == "in: keys[0]: 'rotvec[1]': expected a number, got array");
+    CHECK(field_error(R"({"time": 0, "euler": [{}, 0, 0]})") == "in: keys[0]: 'euler[0]': expected a number, got object");
+    CHECK(field_error(R"({"time": 0, "matrix": [[1, 0, 0], [0, 1, "0"], [0, 0, 1]]})") ==
+          "in: keys[0]: 'matrix[1][2]': expected a number, got string \"0\"");
+    CHECK(field_error(R"({"time": 0, "matrix": [[1, 0, 0], [0, 1], [0, 0, 1]]})") ==
+          "in: keys[0]: 'matrix[1]': expected an array of 3 numbers, got 2 elements");
+    CHECK(field_error(R"({"time": 0, "quat": [1, 0, 0, 0], "translation": [0, "1", 2]})") ==
+          "in: keys[0]: 'translation[1]': expected a number, got string \"1\"");
+    CHECK(field_error(R"({"frame": "3", "quat": [1, 0, 0, 0]})") == "in: keys[0]: 'frame': expected a number, got string \"3\"");
+}
+
 TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
     const auto doc = read("{\"track\": \"a\", \"time\": 0, \"quat\": [1,0,0,0]}\n\n"
                           "{\"track\": \"b\", \"time\": 0, \"rotvec\": [0,0,1]}\n",
@@ -170,6 +194,12 @@ TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
     CHECK(doc.tracks[1].keys[0].at.line == 3);
     CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1}\n", format::ndjson).find("in:2: no rotation") == 0);
     CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{oops\n", format::ndjson).find("in:2: invalid JSON") == 0);
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n\n{\"time\": 1, \"quat\": [1,0,0,\"0\"]}\n", format::ndjson) ==
+          "in:3: 'quat[3]': expected a number, got string \"0\"");
+    CHECK(error_of("{\"track\": \"a\", \"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1, \"quat\": [1,0,0,0]}\n",
+                   format::ndjson) == "in:2: some lines have a 'track' and some do not: expected all or none");
+    CHECK(error_of("{\"track\": 7, \"time\": 0, \"quat\": [1,0,0,0]}\n", format::ndjson) ==
+          "in:1: 'track': expected a string, got number");
 }
 
 TEST_CASE("writers: CSV, JSON and NDJSON tables") {
