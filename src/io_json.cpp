@@ -130,8 +130,8 @@ public:
 private:
     [[noreturn]] void fail(const std::string& message) const { throw input_error(where(source_, at_), message); }
 
-    // Messages name the field: `field` is its name, or a callable that
-    // spells the name out ("quat[2]"), called only when there is an error.
+    /// Messages name the field: `field` is its name, or a callable that
+    /// spells the name out ("quat[2]"), called only when there is an error.
     double number(const json& j, const std::invocable auto& field) const {
         if (!j.is_number())
             fail(fmt::format("'{}': expected a number, got {}{}", field(), type_name(j),
@@ -150,7 +150,7 @@ private:
         return number(*it, field);
     }
 
-    /// The first n (at most 4) elements are the numbers.
+    /// The n (at most 4) numbers of an array field, in the first n places.
     std::array<double, 4> numbers(const json& j, const std::invocable auto& field, std::size_t n) const {
         if (!j.is_array() || j.size() != n)
             fail(fmt::format("'{}': expected an array of {} numbers, got {}", field(), n,
