@@ -83,45 +83,46 @@ public:
         if (!k.time && !k.frame) fail("expected a 'time' or a 'frame'");
         if (k.time && k.frame && !frames_doc_) fail("a key has both 'time' and 'frame': expected exactly one");
 
-        int rotations = 0;
-        for (const char* name : {"quat", "axis", "rotvec", "euler", "matrix"}) rotations += obj_.contains(name);
+        const json *quat = member("quat"), *axis = member("axis"), *rotvec = member("rotvec"),
+                   *euler = member("euler"), *matrix = member("matrix"), *angle = member("angle");
+        const int rotations = !!quat + !!axis + !!rotvec + !!euler + !!matrix;
         if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
         if (rotations > 1) fail("more than one rotation: expected exactly one of 'quat', 'axis', 'rotvec', 'euler', 'matrix'");
-        if (obj_.contains("angle") && !obj_.contains("axis")) fail("'angle' without 'axis'");
+        if (angle && !axis) fail("'angle' without 'axis'");
 
-        if (obj_.contains("quat")) {
+        if (quat) {
             k.kind = rep::quat;
-            const json& q = obj_.at("quat");
-            if (q.is_object()) {
+            if (quat->is_object()) {
                 const char* names[] = {"w", "x", "y", "z"};
                 for (std::size_t i = 0; i < 4; ++i) {
-                    if (!q.contains(names[i])) fail(fmt::format("'quat' object: missing '{}': expected w x y z", names[i]));
-                    k.values[i] = number(q.at(names[i]), [&] { return fmt::format("quat.{}", names[i]); });
+                    const auto it = quat->find(names[i]);
+                    if (it == quat->end()) fail(fmt::format("'quat' object: missing '{}': expected w x y z", names[i]));
+                    k.values[i] = number(*it, [&] { return fmt::format("quat.{}", names[i]); });
                 }
             } else {
-                const auto v = numbers(q, "quat", 4);
+                const auto v = numbers(*quat, "quat", 4);
                 const auto wxyz = from_quat_order({v[0], v[1], v[2], v[3]}, order_);
                 std::copy(wxyz.begin(), wxyz.end(), k.values.begin());
             }
-        } else if (obj_.contains("axis")) {
+        } else if (axis) {
             k.kind = rep::axis_angle;
-            if (!obj_.contains("angle")) fail("'axis' without 'angle'");
-            const auto v = numbers(obj_.at("axis"), "axis", 3);
+            if (!angle) fail("'axis' without 'angle'");
+            const auto v = numbers(*axis, "axis", 3);
             std::copy_n(v.begin(), 3, k.values.begin());
-            k.values[3] = number(obj_.at("angle"), "angle");
-        } else if (obj_.contains("rotvec")) {
+            k.values[3] = number(*angle, "angle");
+        } else if (rotvec) {
             k.kind = rep::rotvec;
-            const auto v = numbers(obj_.at("rotvec"), "rotvec", 3);
+            const auto v = numbers(*rotvec, "rotvec", 3);
             std::copy_n(v.begin(), 3, k.values.begin());
-        } else if (obj_.contains("euler")) {
+        } else if (euler) {
             k.kind = rep::euler;
-            const auto v = numbers(obj_.at("euler"), "euler", 3);
+            const auto v = numbers(*euler, "euler", 3);
             std::copy_n(v.begin(), 3, k.values.begin());
         } else {
-            read_matrix(k);
+            read_matrix(*matrix, k);
         }
-        if (obj_.contains("translation")) {
-            const auto v = numbers(obj_.at("translation"), "translation", 3);
+        if (const json* translation = member("translation")) {
+            const auto v = numbers(*translation, "translation", 3);
             k.translation = vec3{v[0], v[1], v[2]};
         }
         return k;
@@ -144,10 +145,15 @@ private:
         return number(j, [field] { return field; });
     }
 
+    /// The key's field `name`, or null.
+    const json* member(std::string_view name) const {
+        const auto it = obj_.find(name);
+        return it == obj_.end() ? nullptr : &*it;
+    }
+
     std::optional<double> optional_number(std::string_view field) const {
-        const auto it = obj_.find(field);
-        if (it == obj_.end()) return std::nullopt;
-        return number(*it, field);
+        if (const json* j = member(field)) return number(*j, field);
+        return std::nullopt;
     }
 
     /// The n (at most 4) numbers of an array field, in the first n places.
@@ -163,8 +169,7 @@ private:
         return numbers(j, [field] { return field; }, n);
     }
 
-    void read_matrix(raw_key& k) const {
-        const json& m = obj_.at("matrix");
+    void read_matrix(const json& m, raw_key& k) const {
         if (!m.is_array() || (m.size() != 3 && m.size() != 4))
             fail(fmt::format("'matrix': expected 3 or 4 rows, got {}",
                              m.is_array() ? fmt::format("{} rows", m.size()) : type_name(m)));
