@@ -82,19 +82,29 @@ quat squad(quat q0, quat q1, quat s0, quat s1, double h) noexcept {
     return slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2 * h * (1 - h));
 }
 
-quat segment::at(double h) const noexcept {
+segment_curve segment::curve() const noexcept {
+    segment_curve c;
+    c.how_ = how_;
+    c.q0_ = q0, c.q1_ = q1;
+    if (how_ == method::slerp || how_ == method::squad) c.arc_ = slerp_segment(q0, q1);
+    if (how_ == method::squad) c.control_arc_ = slerp_segment(s0_, s1_);
+    if (how_ == method::euler) c.e0_ = e0_, c.e1_ = e1_, c.seq_ = seq_;
+    return c;
+}
+
+quat segment_curve::at(double h) const noexcept {
     switch (how_) {
         case method::slerp: return arc_.at(h);
-        case method::nlerp: return nlerp(q0, q1, h);
+        case method::nlerp: return nlerp(q0_, q1_, h);
         case method::squad: return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h));
-        case method::step: return q0;
+        case method::step: return q0_;
         case method::euler: {
             std::array<double, 3> e{};
             for (std::size_t j = 0; j < 3; ++j) e[j] = (1 - h) * e0_[j] + h * e1_[j];
             return from_euler(e, seq_);
         }
     }
-    return q0;
+    return q0_;
 }
 
 void check_method(method m, const std::optional<euler_seq>& seq) {
@@ -125,8 +135,7 @@ bool segment_builder::pop(segment& out, bool end) {
     const entry& b = window_[1];
     out.how_ = how_;
     out.t0 = a.time, out.t1 = b.time, out.q0 = a.q, out.q1 = b.q;
-    if (how_ == method::slerp || how_ == method::squad) out.arc_ = slerp_segment(a.q, b.q);
-    if (how_ == method::squad) out.control_arc_ = slerp_segment(a.s, b.s);
+    out.s0_ = a.s, out.s1_ = b.s;
     if (how_ == method::euler) out.e0_ = a.e, out.e1_ = b.e, out.seq_ = *seq_;
     window_.erase(window_.begin());
     return true;
@@ -137,9 +146,9 @@ rotation_curve::rotation_curve(const track& t, method m, path p) {
     segment s;
     for (const key& k : t.keys) {
         keys_.push_back(builder.add(k));
-        while (builder.pop(s, false)) segments_.push_back(s);
+        while (builder.pop(s, false)) segments_.push_back(s.curve());
     }
-    while (builder.pop(s, true)) segments_.push_back(s);
+    while (builder.pop(s, true)) segments_.push_back(s.curve());
 }
 
 }  // namespace keyrot

@@ -62,14 +62,17 @@ void track_resampler::finish() {
 
 void track_resampler::frames_of(const segment& s) {
     // frames in [t0, t1): at t0 the key itself, inside by the curve; a frame
-    // within tolerance of t1 belongs to the next key
+    // within tolerance of t1 belongs to the next key. Dense keys (motion
+    // capture at 120 Hz, say) leave most segments without a frame inside.
+    std::optional<segment_curve> curve;
     for (;; ++next_frame_) {
         const double time = next_frame_ / opts_.fps;
         if (time > s.t1 - key_tol_) break;
         if (std::fabs(time - s.t0) <= key_tol_) {
             out(next_frame_, s.q0);
         } else {
-            out(next_frame_, s.at((time - s.t0) / (s.t1 - s.t0)));
+            if (!curve) curve = s.curve();
+            out(next_frame_, curve->at((time - s.t0) / (s.t1 - s.t0)));
         }
     }
 }

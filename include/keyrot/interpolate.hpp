@@ -54,17 +54,34 @@ quat squad_control(quat prev, quat cur, quat next) noexcept;
 quat squad(quat q0, quat q1, quat s0, quat s1, double h) noexcept;
 
 /// The curve between two neighbouring keys for one method, ready to evaluate.
-class segment {
+class segment_curve {
 public:
-    double t0 = 0, t1 = 0;  ///< the keys' times
-    quat q0, q1;            ///< the keys, with the signs the path gave them
     /// The rotation at local parameter h in [0, 1].
     quat at(double h) const noexcept;
 
 private:
+    friend class segment;
+    method how_ = method::slerp;
+    quat q0_, q1_;
+    slerp_segment arc_, control_arc_;  // slerp, squad: q0 to q1; squad: s0 to s1
+    std::array<double, 3> e0_{}, e1_{};  // euler: the keys' angles
+    euler_seq seq_;
+};
+
+/// Two neighbouring keys and what a method needs of them.
+class segment {
+public:
+    double t0 = 0, t1 = 0;  ///< the keys' times
+    quat q0, q1;            ///< the keys, with the signs the path gave them
+    /// The curve between them. Its set-up (slerp's angle and axis) costs as
+    /// much as a few frames: make it once, and only for a segment with a
+    /// frame inside.
+    segment_curve curve() const noexcept;
+
+private:
     friend class segment_builder;
     method how_ = method::slerp;
-    slerp_segment arc_, control_arc_;  // slerp, squad: q0 to q1; squad: s0 to s1
+    quat s0_, s1_;                       // squad: the control points
     std::array<double, 3> e0_{}, e1_{};  // euler: the keys' angles
     euler_seq seq_;
 };
@@ -107,7 +124,7 @@ public:
 
 private:
     std::vector<quat> keys_;
-    std::vector<segment> segments_;
+    std::vector<segment_curve> segments_;
 };
 
 }  // namespace keyrot
