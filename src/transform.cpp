@@ -91,7 +91,7 @@ document_facts facts_of(const input& doc) {
 document_facts scan(const options& o, const input_source& src, format f, warnings& warn, bool& interleaved) {
     const auto stream = src.open();
     const read_options ro = reading(o, src);
-    const auto reader = make_key_reader(*stream, f, ro, warn);
+    const auto reader = read_ahead(make_key_reader(*stream, f, ro, warn), [] { return true; });
     document_facts d;
     std::set<std::string> seen;
     std::string name;
@@ -366,14 +366,19 @@ std::optional<document_facts> stream_rows(const options& o, const input_source& 
                                           const document_facts* known, row_pipeline& rows, warnings& warn) {
     const auto stream = src.open();
     const read_options ro = reading(o, src);
-    const auto reader = make_key_reader(*stream, f, ro, warn);
-    const auto row = [&](const sample& s) { rows.row(s); };
+    std::size_t keys = 0, rows_put = 0;
+    const auto row = [&](const sample& s) { ++rows_put, rows.row(s); };
+    // Parsing ahead on a thread of its own pays when keys outnumber frames
+    // (motion capture at 120 Hz resampled to 24 fps, say). Otherwise the
+    // formatting threads keep the cores busy, and it would only cost.
+    const auto reader = read_ahead(make_key_reader(*stream, f, ro, warn), [&] { return rows_put < keys; });
     std::optional<track_resampler> resampler;
     document_facts seen;
     std::set<std::string> names;
     std::string name;
     raw_key raw;
     while (reader->next(name, raw)) {
+        ++keys;
         key k = make_key(raw, ro.settings, warn);
         const bool same_track = !seen.tracks.empty() && seen.tracks.back().name == name;
         if (!known && same_track) check_order(seen.tracks.back().last, k, src.source());

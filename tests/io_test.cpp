@@ -2,6 +2,7 @@
 #include "keyrot/io.hpp"
 
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <sstream>
 
@@ -200,6 +201,99 @@ TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
                    format::ndjson) == "in:2: some lines have a 'track' and some do not: expected all or none");
     CHECK(error_of("{\"track\": 7, \"time\": 0, \"quat\": [1,0,0,0]}\n", format::ndjson) ==
           "in:1: 'track': expected a string, got number");
+}
+
+namespace {
+
+/// Every key a reader gives, and the message it stops with ("" at the end).
+struct reading_result {
+    std::vector<std::pair<std::string, raw_key>> keys;
+    std::string error;
+};
+
+reading_result read_all(key_reader& reader, std::size_t at_most = SIZE_MAX) {
+    reading_result r;
+    std::string name;
+    raw_key k;
+    try {
+        while (r.keys.size() < at_most && reader.next(name, k)) r.keys.emplace_back(name, k);
+    } catch (const input_error& e) {
+        r.error = e.what();
+    }
+    return r;
+}
+
+/// A CSV track of `n` keys (the track's name changes halfway, to one too
+/// long to be stored in place) with a bad cell on line `bad_line`, if any.
+std::string numbered_keys(std::size_t n, std::size_t bad_line = 0) {
+    std::string text = "track,time,qw,qx,qy,qz\n";
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::string qz = i + 2 == bad_line ? "x" : std::to_string(i);
+        text += (i < n / 2 ? "a," : "a track with a long name,") + std::to_string(i) + ",1,0,0," + qz + "\n";
+    }
+    return text;
+}
+
+}  // namespace
+
+TEST_CASE("read_ahead: the same keys and errors as the reader it wraps, in order") {
+    std::ostringstream err;
+    warnings warn(err, "in");
+    read_options o;
+    o.source = "in";
+    const auto read = [&](const std::string& text, bool ahead, int& asked, std::size_t at_most = SIZE_MAX) {
+        std::istringstream in(text);
+        auto reader = make_key_reader(in, format::csv, o, warn);
+        if (ahead) reader = read_ahead(std::move(reader), [&asked] { return ++asked > 0; });
+        return read_all(*reader, at_most);
+    };
+    const auto same = [](const reading_result& a, const reading_result& b) {
+        REQUIRE(a.keys.size() == b.keys.size());
+        for (std::size_t i = 0; i < a.keys.size(); ++i) {
+            CAPTURE(i);
+            CHECK(a.keys[i].first == b.keys[i].first);
+            CHECK(a.keys[i].second.at.line == b.keys[i].second.at.line);
+            CHECK(a.keys[i].second.time == b.keys[i].second.time);
+            CHECK(a.keys[i].second.values == b.keys[i].second.values);
+        }
+        CHECK(a.error == b.error);
+    };
+    int asked = 0;
+    // Keys and line numbers straight from the text: key i is on line i + 2.
+    const reading_result plain = read(numbered_keys(5000), false, asked);
+    REQUIRE(plain.keys.size() == 5000);
+    CHECK(plain.keys[4999].second.at.line == 5001);
+    CHECK(plain.keys[4999].second.values[3] == 4999);
+    CHECK(plain.keys[4999].first == "a track with a long name");
+    CHECK(plain.error.empty());
+    same(read(numbered_keys(5000), true, asked), plain);
+    CHECK(asked == 1);
+
+    // The error after the keys before it, whether in the thread's first
+    // batch, a later one, or among the keys read before the thread starts.
+    for (const std::size_t bad : std::initializer_list<std::size_t>{3000, 1025, 1026, 2050, 5001, 500}) {
+        CAPTURE(bad);
+        const reading_result expected = read(numbered_keys(5000, bad), false, asked);
+        CHECK(expected.keys.size() == bad - 2);
+        CHECK(expected.error == fmt::format("in:{}: column 'qz': expected a finite number, got 'x'", bad));
+        same(read(numbered_keys(5000, bad), true, asked), expected);
+    }
+
+    // A small input never asks; a caller that stops early (the thread a few
+    // batches ahead, waiting) ends without hanging.
+    asked = 0;
+    same(read(numbered_keys(1000), true, asked), read(numbered_keys(1000), false, asked));
+    CHECK(asked == 0);
+    const reading_result first = read(numbered_keys(20000), true, asked, 1500);
+    CHECK(first.keys.size() == 1500);
+    CHECK(first.keys[1499].second.values[3] == 1499);
+    CHECK(asked == 1);
+
+    // Not worth it: all on the caller's thread, the same again.
+    std::istringstream in(numbered_keys(3000, 2500));
+    const auto no_thread = read_ahead(make_key_reader(in, format::csv, o, warn), [&asked] { return ++asked < 0; });
+    same(read_all(*no_thread), read(numbered_keys(3000, 2500), false, asked));
+    CHECK(asked == 2);
 }
 
 TEST_CASE("writers: CSV, JSON and NDJSON tables") {

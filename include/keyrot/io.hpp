@@ -1,6 +1,7 @@
 #pragma once
 // The file formats and what is common to their readers and writers: the
 // document a reader returns and the row-by-row writer interface.
+#include <functional>
 #include <istream>
 #include <memory>
 #include <optional>
@@ -55,6 +56,11 @@ public:
 
 /// For format::csv or format::ndjson. Warnings (unknown columns) go to `warn`.
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn);
+
+/// `reader`'s keys, parsed on a thread of their own ahead of the caller once
+/// more than a thousand have come and `worth_it()` (asked then, on the
+/// caller's thread) says so. The caller must not use the reader's stream.
+std::unique_ptr<key_reader> read_ahead(std::unique_ptr<key_reader> reader, std::function<bool()> worth_it);
 
 /// A whole document, keys grouped into tracks by name in order of first
 /// appearance. Warnings (unknown columns, say) go to `warn`.
