@@ -62,19 +62,15 @@ void track_resampler::finish() {
 
 void track_resampler::frames_of(const segment& s) {
     // frames in [t0, t1): at t0 the key itself, inside by the curve; a frame
-    // within tolerance of t1 belongs to the next key. Dense keys (motion
-    // capture at 120 Hz, say) leave most segments without a frame inside.
-    std::optional<segment_curve> curve;
-    for (;; ++next_frame_) {
-        const double time = next_frame_ / opts_.fps;
-        if (time > s.t1 - key_tol_) break;
-        if (std::fabs(time - s.t0) <= key_tol_) {
-            out(next_frame_, s.q0);
-        } else {
-            if (!curve) curve = s.curve();
-            out(next_frame_, curve->at((time - s.t0) / (s.t1 - s.t0)));
-        }
-    }
+    // within tolerance of t1 belongs to the next key
+    const auto time = [this] { return next_frame_ / opts_.fps; };
+    const auto in_segment = [&] { return time() <= s.t1 - key_tol_; };
+    if (in_segment() && std::fabs(time() - s.t0) <= key_tol_) out(next_frame_, s.q0), ++next_frame_;
+    // Dense keys (motion capture at 120 Hz, say) leave most segments without
+    // a frame inside: they never set up a curve.
+    if (!in_segment()) return;
+    const segment_curve curve = s.curve();
+    for (; in_segment(); ++next_frame_) out(next_frame_, curve.at((time() - s.t0) / (s.t1 - s.t0)));
 }
 
 void track_resampler::frames_until(double time, quat q) {
