@@ -1,5 +1,6 @@
 // keyrot's benchmark (run by hand, not by the tests): generates quaternion
-// tracks (numbers in shortest form, and in numpy's savetxt form), runs
+// tracks (numbers in shortest form, and in numpy's savetxt form; keys 5
+// frames apart, and dense keys at 120 Hz as motion capture gives), runs
 // `keyrot resample track.csv -o out.csv --rep axis-angle` and, where python3
 // has numpy and scipy, the script a scipy user would write (loadtxt ->
 // Slerp -> as_rotvec -> savetxt), several times each, taking turns, and
@@ -86,8 +87,10 @@ std::vector<summary> repeat(const std::vector<std::vector<std::string>>& command
 /// numpy's savetxt writes them by default ("%.18e", 19 digits).
 enum class digits { shortest, numpy };
 
-/// A track of `keys` random unit quaternions, 5 frames apart at 24 fps.
-std::size_t write_track(const std::string& path, std::size_t keys, digits style = digits::shortest) {
+/// A track of `keys` random unit quaternions, `density` keys every 5 frames
+/// at 24 fps (25: 120 a second); returns its frames.
+std::size_t write_track(const std::string& path, std::size_t keys, digits style = digits::shortest,
+                        std::size_t density = 1) {
     std::mt19937_64 gen(7);
     std::normal_distribution<double> n;
     // Line by line: Linux counts the spawning process's own peak into the
@@ -97,11 +100,12 @@ std::size_t write_track(const std::string& path, std::size_t keys, digits style 
     for (std::size_t i = 0; i < keys; ++i) {
         double q[4] = {n(gen), n(gen), n(gen), n(gen)};
         const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-        const double row[5] = {static_cast<double>(i) * 5 / 24, q[0] / len, q[1] / len, q[2] / len, q[3] / len};
+        const double time = static_cast<double>(i * 5) / static_cast<double>(24 * density);
+        const double row[5] = {time, q[0] / len, q[1] / len, q[2] / len, q[3] / len};
         out << (style == digits::shortest ? fmt::format("{}\n", fmt::join(row, ","))
                                           : fmt::format("{:.18e}\n", fmt::join(row, ",")));
     }
-    return (keys - 1) * 5 + 1;  // frames
+    return (keys - 1) * 5 / density + 1;
 }
 
 constexpr const char* scipy_script = R"(import sys
@@ -152,26 +156,33 @@ int main(int argc, char** argv) {
     fmt::print("{:<34} {:>10} {:>12} {:>10}\n", "", "median s", "frames/s", "peak RSS");
     struct input {
         std::size_t keys;
-        digits style;
+        digits style = digits::shortest;
+        std::size_t density = 1;
     };
     const auto print_row = [](const std::string& name, const summary& m, std::size_t frames) {
         fmt::print("{:<34} {:>10.3f} {:>10.2f} M {:>7.1f} MB{}\n", name, m.median_s,
                    static_cast<double>(frames) / m.median_s / 1e6, static_cast<double>(m.peak_kb) / 1024,
                    m.ok ? "" : "  FAILED");
     };
-    for (const input in : {input{200000, digits::shortest}, input{200000, digits::numpy}, input{800000, digits::shortest}}) {
-        const bool numpy = in.style == digits::numpy;
-        const std::string track = fmt::format("{}/track{}{}.csv", dir, in.keys, numpy ? "_numpy" : "");
-        const std::size_t frames = write_track(track, in.keys, in.style);
+    const input inputs[] = {{200000}, {200000, digits::numpy}, {800000}, {1000000, digits::shortest, 25}};
+    for (const input& in : inputs) {
+        const bool numpy = in.style == digits::numpy, dense = in.density > 1;
+        const std::string track =
+            fmt::format("{}/track{}{}{}.csv", dir, in.keys, numpy ? "_numpy" : "", dense ? "_120hz" : "");
+        const std::size_t frames = write_track(track, in.keys, in.style, in.density);
         std::vector<std::vector<std::string>> commands = {
             {keyrot, "resample", track, "-o", dir + "/out.csv", "--rep", "axis-angle"}};
         // The scipy script at 4M frames would take most of a minute a run.
-        const bool with_scipy = !python.empty() && in.keys <= 200000;
+        const bool with_scipy = !python.empty() && frames <= 1000000;
         if (with_scipy) commands.push_back({python, script, track, dir + "/out_scipy.csv"});
         const auto results = repeat(commands, runs);
-        print_row(fmt::format("keyrot, {:.1f}M frames{}", static_cast<double>(frames) / 1e6, numpy ? ", %.18e" : ""),
+        print_row(fmt::format("keyrot, {:.1f}M frames{}{}", static_cast<double>(frames) / 1e6, numpy ? ", %.18e" : "",
+                              dense ? fmt::format(", {:.0f}M keys", static_cast<double>(in.keys) / 1e6) : ""),
                   results[0], frames);
-        fmt::print("{:<34} {:>10.3f}\n", "  per million frames", results[0].median_s * 1e6 / static_cast<double>(frames));
+        // Reading bounds a dense track's run, so its time goes with its keys.
+        const std::size_t per = dense ? in.keys : frames;
+        fmt::print("{:<34} {:>10.3f}\n", dense ? "  per million keys" : "  per million frames",
+                   results[0].median_s * 1e6 / static_cast<double>(per));
         if (python.empty()) {
             fmt::print("  scipy: not run (no python3 with numpy and scipy; apt-get install python3-scipy)\n");
         } else if (with_scipy) {
