@@ -96,8 +96,48 @@ printf 'track,time,qw,qx,qy,qz,tx,ty,tz\na,0,1,0,0,0,,,\na,1,0,1,0,0,,,\nb,0,1,0
     > second_track_translation.csv
 printf 'track,time,qw,qx,qy,qz\na,0,1,0,0,0\nb,0,1,0,0,0\na,1,0,1,0,0\nb,1,0,0,1,0\n' > interleaved.csv
 printf 'time,qw,qx,qy,qz,extra\n0,2,0,0,0,x\n1,0,0,0,1,y\n' > warnings.csv
-for f in late_translation.csv second_track_translation.csv interleaved.csv warnings.csv "$tests"/../data/*.csv \
-    "$tests"/good/*.csv "$tests"/good/*.ndjson; do
+# Dense keys (120 a second, more keys than frames at 4 or 80 fps) are
+# parsed on a second thread after the first 1024; an error there must still
+# come out after the keys before it: a bad cell on line 2500, and on line
+# 2000 a zero quaternion, which the reading thread finds. Key i turns 2 h(i)
+# about z, h(i) = i/200 + (i/1000)^2: slerp turns evenly between keys, so
+# frame k at 80 fps turns 2 h linearly interpolated at i = 1.5 k. A lost key
+# would move the frames within a key of it (one at least) by 1e-7 or more.
+awk 'function h(i) { return i / 200 + (i / 1000) ^ 2 }
+     BEGIN { print "time,qw,qx,qy,qz"
+             for (i = 0; i < 3000; i++) printf "%.17g,%.17g,0,0,%.17g\n", i / 120, cos(h(i)), sin(h(i)) }' > dense.csv
+for out in "" "-o dense_out.csv"; do
+    # shellcheck disable=SC2086
+    "$keyrot" resample dense.csv --fps 80 $out >dense_stdout.csv
+    [[ -n $out ]] && mv dense_out.csv dense_stdout.csv
+    if awk -F, 'function h(i) { return i / 200 + (i / 1000) ^ 2 }
+                NR > 1 { a = $5 * $6 * 3.14159265358979324 / 180; x = 1.5 * $1; j = int(x)
+                         want = 2 * (h(j) + (x - j) * (h(j + 1) - h(j)))
+                         if (($6 != 0 && ($3 != 0 || $4 != 0)) || (cos(a) - cos(want)) ^ 2 + (sin(a) - sin(want)) ^ 2 > 1e-24)
+                             bad = 1 }
+                END { exit bad || NR != 2001 }' dense_stdout.csv; then
+        passed=$((passed + 1))
+    else
+        fail "dense.csv at 80 fps $out: frames off the keys' turn about z"
+    fi
+done
+awk -F, -v OFS=, 'NR == 2500 { $5 = "x" } 1' dense.csv > dense_bad_cell.csv
+awk -F, -v OFS=, 'NR == 2000 { $2 = $3 = $4 = $5 = 0 } 1' dense_bad_cell.csv > dense_zero_key.csv
+awk -F, 'NR > 1 { printf "{\"time\": %s, \"quat\": [%s, %s, %s, %s]}\n", $1, $2, $3, $4, NR == 2500 ? "\"x\"" : $5 }' \
+    dense.csv > dense_bad_cell.ndjson
+for f in dense_bad_cell.csv dense_zero_key.csv dense_bad_cell.ndjson; do
+    for out in "" "-o bad_out.csv"; do
+        case $f in
+            *.csv) line=2500 message="column 'qz': expected a finite number, got 'x'" ;;
+            *) line=2499 message="'quat[3]': expected a number, got string \"x\"" ;;
+        esac
+        [[ $f == dense_zero_key.csv ]] && line=2000 message="quaternion is zero: expected a non-zero quaternion"
+        # shellcheck disable=SC2086
+        expect_error "$f $out" "keyrot: $f:$line: $message" -- "$keyrot" resample "$f" --fps 4 $out
+    done
+done
+for f in late_translation.csv second_track_translation.csv interleaved.csv warnings.csv dense.csv \
+    "$tests"/../data/*.csv "$tests"/good/*.csv "$tests"/good/*.ndjson; do
     for fps in 4 20000; do  # 20000: tens of thousands of rows, formatted on several threads
         "$keyrot" resample "$f" --fps $fps --to csv >two.out 2>two.err
         rc_two=$?
