@@ -88,6 +88,8 @@ void finish(options& o, const raw_flags& f) {
     o.how = *parse_method(f.method);
     o.way = *parse_path(f.path);
     check_rate("--fps", o.fps);
+    if (!(std::isfinite(o.max_frames) && o.max_frames >= 1))
+        throw usage_error(fmt::format("--max-frames: expected a number of frames, at least 1, got {}", o.max_frames));
     if (f.jobs) {
         if (*f.jobs < 1 || *f.jobs > 1024) throw usage_error(fmt::format("--jobs: expected 1 to 1024, got {}", *f.jobs));
         o.jobs = static_cast<unsigned>(*f.jobs);
@@ -113,6 +115,7 @@ void define_resample(CLI::App& sub, options& o, raw_flags& f) {
     add_input_flags(sub, o, f);
     add_output_flags(sub, o, f);
     sub.add_option("--fps", o.fps, "output frame rate (default 24)");
+    sub.add_option("--max-frames", o.max_frames, "most frames a track may make (default 1e7: 116 hours at 24 fps)");
     add_method_flags(sub, f);
 }
 

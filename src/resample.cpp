@@ -24,7 +24,8 @@ void check_frame_range(const key& first, const key& last, const std::string& tra
     }
     if (last_frame - first_frame + 1 > opts.max_frames)
         throw input_error(where(source, last.at),
-                          fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g}",
+                          fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g} "
+                                      "(--max-frames N raises the limit)",
                                       track_name.empty() ? "" : fmt::format("track '{}': ", track_name), first.time,
                                       last.time, last_frame - first_frame + 1, fps, opts.max_frames));
 }

@@ -84,6 +84,13 @@ expect_error "bad number" "keyrot: $work/bad.csv:3: column 'qw': expected a fini
 expect_error "missing file" "keyrot: cannot read '$work/nope.csv': No such file or directory" -- \
     "$keyrot" resample "$work/nope.csv"
 expect_error "bad fps" "keyrot: --fps: expected a positive frame rate, got 0" -- "$keyrot" resample --fps 0 "$data/turntable.csv"
+# --max-frames: 10 s at 24 fps is 241 frames.
+printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n10,0,0,0,1\n' > "$work/ten_seconds.csv"
+expect_error "over --max-frames" "keyrot: $work/ten_seconds.csv:3: keys from 0 s to 10 s make 241 frames at 24 fps: \
+expected at most 240 (--max-frames N raises the limit)" -- "$keyrot" resample --max-frames 240 "$work/ten_seconds.csv"
+expect "at --max-frames" 0 "241" -- bash -c "'$keyrot' resample --max-frames 241 '$work/ten_seconds.csv' | tail -n +2 | wc -l"
+expect_error "bad --max-frames" "keyrot: --max-frames: expected a number of frames, at least 1, got 0.5" -- \
+    "$keyrot" resample --max-frames 0.5 "$work/ten_seconds.csv"
 expect_error "euler without sequence" "keyrot: --method euler needs an Euler sequence: expected --euler SEQ" -- \
     "$keyrot" resample --method euler "$data/turntable.csv"
 expect_error "several files" "keyrot: several input files need --output-dir DIR" -- \

@@ -33,7 +33,7 @@ struct options {
     std::optional<double> key_fps;  ///< defaults to fps
     method how = method::slerp;
     path way = path::shortest;
-    double max_frames = resample_options{}.max_frames;  ///< per track; not a flag (the fuzzer lowers it)
+    double max_frames = resample_options{}.max_frames;  ///< per track (--max-frames)
     unsigned jobs = 0;      ///< --jobs: files converted at once; 0 = the number of cores
     bool progress = false;  ///< a progress line on err for several files (main: when stderr is a terminal)
 
