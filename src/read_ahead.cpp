@@ -4,6 +4,7 @@
 #include <functional>
 #include <mutex>
 #include <thread>
+#include <utility>
 
 #include "keyrot/io.hpp"
 
@@ -34,8 +35,11 @@ public:
 
     bool next(std::string& track, raw_key& k) override {
         if (!thread_.joinable()) {
-            if (inline_keys_ < inline_limit) return ++inline_keys_, inner_->next(track, k);
-            if (!worth_it_ || !worth_it_()) return worth_it_ = nullptr, inner_->next(track, k);
+            if (inline_keys_ < inline_limit || !worth_it_) {
+                ++inline_keys_;
+                return inner_->next(track, k);
+            }
+            if (!std::exchange(worth_it_, nullptr)()) return inner_->next(track, k);
             thread_ = std::thread([this] { produce(); });
         }
         if (at_ == current_.keys.size()) {
@@ -97,7 +101,7 @@ private:
     }
 
     std::unique_ptr<key_reader> inner_;
-    std::function<bool()> worth_it_;  // asked once; empty when it said no
+    std::function<bool()> worth_it_;  // asked once, then empty
     std::size_t inline_keys_ = 0;
     batch current_;  // the caller's
     std::size_t at_ = 0;
