@@ -98,6 +98,7 @@ std::optional<euler_seq> parse_euler_seq(std::string_view name) {
 
 quat from_axis_angle(vec3 axis, double angle, angle_unit unit) noexcept {
     const sin_cos half = sincos(angle / 2, unit);
+    if (std::isinf(norm(axis))) axis = 0.25 * axis;  // its length overflowed; a quarter's does not
     const double s = half.sin / norm(axis);
     return {half.cos, s * axis.x, s * axis.y, s * axis.z};
 }
@@ -105,6 +106,15 @@ quat from_axis_angle(vec3 axis, double angle, angle_unit unit) noexcept {
 quat from_rotvec(vec3 rotvec, angle_unit unit) noexcept {
     const double angle = norm(rotvec);
     if (angle == 0) return {};
+    if (!(angle < 1e150)) {
+        // So long that a double holds it only to many turns: no correction
+        // below (its squares would overflow), and halved first, exactly, so
+        // that the length of the half is finite even where the whole's is not.
+        const vec3 h = 0.5 * rotvec;
+        const double half_angle = norm(h);
+        const sin_cos half = sincos(half_angle, unit);
+        return {half.cos, half.sin * (h.x / half_angle), half.sin * (h.y / half_angle), half.sin * (h.z / half_angle)};
+    }
     const sin_cos half = sincos(angle / 2, unit);
     // The length was rounded to a double: turn on by the rest, |v| - angle =
     // (|v|^2 - angle^2) / (|v| + angle), so that near 180 degrees (where an

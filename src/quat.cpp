@@ -60,7 +60,11 @@ quat conjugate(quat q) noexcept { return {q.w, -q.x, -q.y, -q.z}; }
 vec3 vector_part(quat q) noexcept { return {q.x, q.y, q.z}; }
 
 quat normalized(quat q) noexcept {
-    const double n = norm(q);
+    double n = norm(q);
+    if (std::isinf(n)) {  // finite components, a length past the largest double: a quarter of them has a finite one
+        q = {0.25 * q.w, 0.25 * q.x, 0.25 * q.y, 0.25 * q.z};
+        n = norm(q);
+    }
     return {q.w / n, q.x / n, q.y / n, q.z / n};
 }
 

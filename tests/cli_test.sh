@@ -84,6 +84,12 @@ expect_error "bad number" "keyrot: $work/bad.csv:3: column 'qw': expected a fini
 expect_error "missing file" "keyrot: cannot read '$work/nope.csv': No such file or directory" -- \
     "$keyrot" resample "$work/nope.csv"
 expect_error "bad fps" "keyrot: --fps: expected a positive frame rate, got 0" -- "$keyrot" resample --fps 0 "$data/turntable.csv"
+# A rotation vector too long for the squares of its components (fuzz_csv's
+# finding): 1e200 / 2 degrees is 64 past whole turns (Python's Fraction).
+expect "huge rotation vector" 0 "time,qw,qx,qy,qz
+0,0.438371146789,0,0,0.898794046299" -- \
+    bash -c "printf 'time,rx,ry,rz\n0,0,0,1e200\n' | '$keyrot' convert --from csv --rep quat --precision 12"
+
 # --max-frames: 10 s at 24 fps is 241 frames.
 printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n10,0,0,0,1\n' > "$work/ten_seconds.csv"
 expect_error "over --max-frames" "keyrot: $work/ten_seconds.csv:3: keys from 0 s to 10 s make 241 frames at 24 fps: \

@@ -223,3 +223,29 @@ TEST_CASE("degree inputs: whole quarter turns are exact") {
     CHECK(from_radians(pi / 2, angle_unit::degrees) == 90);
     CHECK(to_axis_angle(q90).axis.z == 1);
 }
+
+TEST_CASE("components so large that a length overflows still give the unit rotation") {
+    // A quaternion of four 1.7e308s is (1, 1, 1, 1) / 2.
+    const quat q = normalized({1.7e308, 1.7e308, 1.7e308, 1.7e308});
+    CHECK(max_diff(q, {0.5, 0.5, 0.5, 0.5}) <= 2.3e-16);
+    // 90 degrees about an axis whose length overflows: about (1, 1, 1).
+    const double s = std::sqrt(0.5);
+    const quat about_diagonal = from_axis_angle({1.7e308, 1.7e308, 1.7e308}, 90, angle_unit::degrees);
+    CHECK(max_diff(about_diagonal, {s, s / std::sqrt(3.0), s / std::sqrt(3.0), s / std::sqrt(3.0)}) <= 2.3e-16);
+    // Rotation vectors too long for the squares of their components: the
+    // half angle reduced exactly (1e200 / 2 is 64 degrees past a whole
+    // number of turns: Python's Fraction), a unit quaternion about the
+    // vector's direction.
+    const quat z = from_rotvec({0, 0, 1e200}, angle_unit::degrees);
+    CHECK(max_diff(z, {std::cos(64 * pi / 180), 0, 0, std::sin(64 * pi / 180)}) <= 4e-16);
+    for (const vec3 v : {vec3{1.7e308, 1.7e308, 1.7e308}, vec3{1, 5.5e174, 0}, vec3{0, -1e150, 0}}) {
+        for (const angle_unit unit : {angle_unit::degrees, angle_unit::radians}) {
+            CAPTURE(v.y);
+            const quat r = from_rotvec(v, unit);
+            CHECK(near(norm(r), 1, 4e-16));
+            const double largest = std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z)));
+            const vec3 direction = (1 / largest) * v;
+            CHECK(norm(cross(vector_part(r), (1 / norm(direction)) * direction)) <= 4e-16);
+        }
+    }
+}
