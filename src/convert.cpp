@@ -98,7 +98,7 @@ std::optional<euler_seq> parse_euler_seq(std::string_view name) {
 
 quat from_axis_angle(vec3 axis, double angle, angle_unit unit) noexcept {
     const sin_cos half = sincos(angle / 2, unit);
-    if (std::isinf(norm(axis))) axis = 0.25 * axis;  // its length overflowed; a quarter's does not
+    if (const double n = norm(axis); !(n > 1e-150 && n < 1e150)) axis = rescaled(axis);
     const double s = half.sin / norm(axis);
     return {half.cos, s * axis.x, s * axis.y, s * axis.z};
 }

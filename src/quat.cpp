@@ -1,6 +1,7 @@
 #include "keyrot/quat.hpp"
 
 #include <cmath>
+#include <initializer_list>
 
 #include "fma_clones.hpp"
 
@@ -61,11 +62,30 @@ vec3 vector_part(quat q) noexcept { return {q.x, q.y, q.z}; }
 
 quat normalized(quat q) noexcept {
     double n = norm(q);
-    if (std::isinf(n)) {  // finite components, a length past the largest double: a quarter of them has a finite one
-        q = {0.25 * q.w, 0.25 * q.x, 0.25 * q.y, 0.25 * q.z};
-        n = norm(q);
-    }
+    if (!(n > 1e-150 && n < 1e150)) q = rescaled(q), n = norm(q);
     return {q.w / n, q.x / n, q.y / n, q.z / n};
+}
+
+namespace {
+
+/// The exponent that takes the largest of these magnitudes into [1, 2).
+int exponent_of_largest(std::initializer_list<double> xs) noexcept {
+    double largest = 0;
+    for (double x : xs) largest = std::fmax(largest, std::fabs(x));
+    return std::ilogb(largest);
+}
+
+}  // namespace
+
+// scalbn rather than a product with 2^-e, which does not exist for e = -1074.
+vec3 rescaled(vec3 v) noexcept {
+    const int e = exponent_of_largest({v.x, v.y, v.z});
+    return {std::scalbn(v.x, -e), std::scalbn(v.y, -e), std::scalbn(v.z, -e)};
+}
+
+quat rescaled(quat q) noexcept {
+    const int e = exponent_of_largest({q.w, q.x, q.y, q.z});
+    return {std::scalbn(q.w, -e), std::scalbn(q.x, -e), std::scalbn(q.y, -e), std::scalbn(q.z, -e)};
 }
 
 quat exp(vec3 v) noexcept {

@@ -224,14 +224,18 @@ TEST_CASE("degree inputs: whole quarter turns are exact") {
     CHECK(to_axis_angle(q90).axis.z == 1);
 }
 
-TEST_CASE("components so large that a length overflows still give the unit rotation") {
-    // A quaternion of four 1.7e308s is (1, 1, 1, 1) / 2.
-    const quat q = normalized({1.7e308, 1.7e308, 1.7e308, 1.7e308});
-    CHECK(max_diff(q, {0.5, 0.5, 0.5, 0.5}) <= 2.3e-16);
-    // 90 degrees about an axis whose length overflows: about (1, 1, 1).
+TEST_CASE("components whose length overflows or is subnormal still give the unit rotation") {
+    // A quaternion of four 1.7e308s is (1, 1, 1, 1) / 2; one of the smallest
+    // subnormals twice (its length rounds to one of them) is (1, 1, 0, 0) / sqrt(2).
     const double s = std::sqrt(0.5);
+    CHECK(max_diff(normalized({1.7e308, 1.7e308, 1.7e308, 1.7e308}), {0.5, 0.5, 0.5, 0.5}) <= 2.3e-16);
+    CHECK(max_diff(normalized({5e-324, 5e-324, 0, 0}), {s, s, 0, 0}) <= 2.3e-16);
+    // 90 degrees about an axis whose length overflows: about (1, 1, 1); or is
+    // subnormal: about x, and about (1, 1, 0).
     const quat about_diagonal = from_axis_angle({1.7e308, 1.7e308, 1.7e308}, 90, angle_unit::degrees);
     CHECK(max_diff(about_diagonal, {s, s / std::sqrt(3.0), s / std::sqrt(3.0), s / std::sqrt(3.0)}) <= 2.3e-16);
+    CHECK(max_diff(from_axis_angle({1e-320, 0, 0}, 90, angle_unit::degrees), {s, s, 0, 0}) <= 2.3e-16);
+    CHECK(max_diff(from_axis_angle({5e-324, 5e-324, 0}, 90, angle_unit::degrees), {s, 0.5, 0.5, 0}) <= 2.3e-16);
     // Rotation vectors too long for the squares of their components: the
     // half angle reduced exactly (1e200 / 2 is 64 degrees past a whole
     // number of turns: Python's Fraction), a unit quaternion about the

@@ -52,6 +52,12 @@ vec3 vector_part(quat q) noexcept;
 
 /// q / |q|. Precondition: q is finite and non-zero.
 quat normalized(quat q) noexcept;
+/// v or q times the power of two that puts its largest component in [1, 2):
+/// exactly the same direction, with a length that can neither pass the
+/// largest double nor lose digits among the subnormals. Precondition:
+/// finite and non-zero.
+vec3 rescaled(vec3 v) noexcept;
+quat rescaled(quat q) noexcept;
 
 /// Exponential of the pure quaternion (0, v): (cos|v|, sin|v| v/|v|).
 /// exp({0, 0, pi/4}) = 90 degrees about z.
