@@ -62,13 +62,16 @@ vec3 vector_part(quat q) noexcept { return {q.x, q.y, q.z}; }
 
 quat normalized(quat q) noexcept {
     double n = norm(q);
-    if (!(n > 1e-150 && n < 1e150)) q = rescaled(q), n = norm(q);
+    if (!(n > 1e-150 && n < 1e150)) {  // past the largest double, or among the subnormals
+        q = rescaled(q);
+        n = norm(q);
+    }
     return {q.w / n, q.x / n, q.y / n, q.z / n};
 }
 
 namespace {
 
-/// The exponent that takes the largest of these magnitudes into [1, 2).
+/// e with the largest of these magnitudes in [2^e, 2^(e+1)).
 int exponent_of_largest(std::initializer_list<double> xs) noexcept {
     double largest = 0;
     for (double x : xs) largest = std::fmax(largest, std::fabs(x));
