@@ -120,8 +120,10 @@ quat from_rotvec(vec3 rotvec, angle_unit unit) noexcept {
     // (|v|^2 - angle^2) / (|v| + angle), so that near 180 degrees (where an
     // ulp of the angle is 4e-16) the half angle is not off by that rounding;
     // and form the components in extended precision, rounding each once.
+    // Only to a million: past it the rest can exceed 1e-10, and a first-order
+    // turn by it is no longer a rotation (5.6e21 once gave a length of 700).
     long double d = 0;
-    if (angle > 1e-150) {
+    if (angle > 1e-150 && angle < 1e6) {
         const double rest = dot2({rotvec.x, rotvec.y, rotvec.z, angle}, {rotvec.x, rotvec.y, rotvec.z, -angle}) / (2 * angle);
         d = to_radians(rest, unit) / 2;
     }

@@ -253,3 +253,20 @@ TEST_CASE("components whose length overflows or is subnormal still give the unit
         }
     }
 }
+
+TEST_CASE("rotation vectors of every length give unit quaternions about their direction") {
+    // Past a few million the length's rounding error is more than a
+    // millionth of a radian, so it cannot be corrected to first order; the
+    // first (fuzz) vector, 5.6e21 long, once gave a quaternion of length 700.
+    for (const vec3 direction : {vec3{1, 5.5555555555555500000004e21, 5.5555555555555e18}, vec3{3, -4, 12}}) {
+        const vec3 unit_direction = (1 / norm(direction)) * direction;
+        for (int e = 0; e <= 300; ++e) {
+            for (const angle_unit unit : {angle_unit::degrees, angle_unit::radians}) {
+                CAPTURE(e);
+                const quat r = from_rotvec(std::pow(10.0, e) * unit_direction, unit);
+                CHECK(near(norm(r), 1, 4e-16));
+                CHECK(norm(cross(vector_part(r), unit_direction)) <= 4e-16);
+            }
+        }
+    }
+}
