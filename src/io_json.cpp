@@ -9,6 +9,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "keyrot/json_line.hpp"
+
 namespace keyrot {
 namespace {
 
@@ -19,6 +21,29 @@ using json = nlohmann::json;
 constexpr int max_depth = 64;
 
 std::string type_name(const json& j) { return j.type_name(); }
+
+/// A nlohmann-json value with json_line::value's queries, so that one key
+/// reader serves both.
+class dom_value {
+public:
+    explicit dom_value(const json& j) : j_(&j) {}
+    std::string_view type_name() const { return j_->type_name(); }
+    bool is_number() const { return j_->is_number(); }
+    bool is_string() const { return j_->is_string(); }
+    bool is_array() const { return j_->is_array(); }
+    bool is_object() const { return j_->is_object(); }
+    double number() const { return j_->get<double>(); }
+    std::string_view string() const { return j_->get_ref<const std::string&>(); }
+    std::size_t size() const { return j_->size(); }
+    dom_value operator[](std::size_t i) const { return dom_value((*j_)[i]); }
+    std::optional<dom_value> member(std::string_view name) const {
+        const auto it = j_->find(name);
+        return it == j_->end() ? std::nullopt : std::optional(dom_value(*it));
+    }
+
+private:
+    const json* j_;
+};
 
 /// Line (1-based) of a byte offset, for parse errors.
 std::size_t line_of(std::string_view text, std::size_t byte) {
@@ -68,14 +93,15 @@ json parse(std::string_view text, std::string_view source, std::size_t first_lin
     }
 }
 
-/// Reads the fields of one key object.
+/// Reads the fields of one key object: a dom_value or a json_line::value.
+template <class Value>
 class key_object_reader {
 public:
-    key_object_reader(const json& obj, const std::string& source, location at, quat_order order, bool frames_doc)
+    key_object_reader(Value obj, const std::string& source, location at, quat_order order, bool frames_doc)
         : obj_(obj), source_(source), at_(std::move(at)), order_(order), frames_doc_(frames_doc) {}
 
     raw_key read() {
-        if (!obj_.is_object()) fail(fmt::format("expected a key object, got {}", type_name(obj_)));
+        if (!obj_.is_object()) fail(fmt::format("expected a key object, got {}", obj_.type_name()));
         raw_key k;
         k.at = at_;
         k.time = optional_number("time");
@@ -83,8 +109,8 @@ public:
         if (!k.time && !k.frame) fail("expected a 'time' or a 'frame'");
         if (k.time && k.frame && !frames_doc_) fail("a key has both 'time' and 'frame': expected exactly one");
 
-        const json *quat = member("quat"), *axis = member("axis"), *rotvec = member("rotvec"),
-                   *euler = member("euler"), *matrix = member("matrix"), *angle = member("angle");
+        const auto quat = obj_.member("quat"), axis = obj_.member("axis"), rotvec = obj_.member("rotvec"),
+                   euler = obj_.member("euler"), matrix = obj_.member("matrix"), angle = obj_.member("angle");
         const int rotations = !!quat + !!axis + !!rotvec + !!euler + !!matrix;
         if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
         if (rotations > 1) fail("more than one rotation: expected exactly one of 'quat', 'axis', 'rotvec', 'euler', 'matrix'");
@@ -95,9 +121,9 @@ public:
             if (quat->is_object()) {
                 const char* names[] = {"w", "x", "y", "z"};
                 for (std::size_t i = 0; i < 4; ++i) {
-                    const auto it = quat->find(names[i]);
-                    if (it == quat->end()) fail(fmt::format("'quat' object: missing '{}': expected w x y z", names[i]));
-                    k.values[i] = number(*it, [&] { return fmt::format("quat.{}", names[i]); });
+                    const auto v = quat->member(names[i]);
+                    if (!v) fail(fmt::format("'quat' object: missing '{}': expected w x y z", names[i]));
+                    k.values[i] = number(*v, [&] { return fmt::format("quat.{}", names[i]); });
                 }
             } else {
                 const auto v = numbers(*quat, "quat", 4);
@@ -121,7 +147,7 @@ public:
         } else {
             read_matrix(*matrix, k);
         }
-        if (const json* translation = member("translation")) {
+        if (const auto translation = obj_.member("translation")) {
             const auto v = numbers(*translation, "translation", 3);
             k.translation = vec3{v[0], v[1], v[2]};
         }
@@ -133,46 +159,40 @@ private:
 
     /// Messages name the field: `field` is its name, or a callable that
     /// spells the name out ("quat[2]"), called only when there is an error.
-    double number(const json& j, const std::invocable auto& field) const {
+    double number(Value j, const std::invocable auto& field) const {
         if (!j.is_number())
-            fail(fmt::format("'{}': expected a number, got {}{}", field(), type_name(j),
-                             j.is_string() ? fmt::format(" \"{}\"", j.get_ref<const std::string&>().substr(0, 40)) : ""));
-        const double v = j.get<double>();
+            fail(fmt::format("'{}': expected a number, got {}{}", field(), j.type_name(),
+                             j.is_string() ? fmt::format(" \"{}\"", j.string().substr(0, 40)) : ""));
+        const double v = j.number();
         if (!std::isfinite(v)) fail(fmt::format("'{}': expected a finite number, got {}", field(), v));
         return v;
     }
-    double number(const json& j, std::string_view field) const {
+    double number(Value j, std::string_view field) const {
         return number(j, [field] { return field; });
     }
 
-    /// The key's field `name`, or null.
-    const json* member(std::string_view name) const {
-        const auto it = obj_.find(name);
-        return it == obj_.end() ? nullptr : &*it;
-    }
-
     std::optional<double> optional_number(std::string_view field) const {
-        if (const json* j = member(field)) return number(*j, field);
+        if (const auto j = obj_.member(field)) return number(*j, field);
         return std::nullopt;
     }
 
     /// The n (at most 4) numbers of an array field, in the first n places.
-    std::array<double, 4> numbers(const json& j, const std::invocable auto& field, std::size_t n) const {
+    std::array<double, 4> numbers(Value j, const std::invocable auto& field, std::size_t n) const {
         if (!j.is_array() || j.size() != n)
             fail(fmt::format("'{}': expected an array of {} numbers, got {}", field(), n,
-                             j.is_array() ? fmt::format("{} elements", j.size()) : type_name(j)));
+                             j.is_array() ? fmt::format("{} elements", j.size()) : std::string(j.type_name())));
         std::array<double, 4> out{};
         for (std::size_t i = 0; i < n; ++i) out[i] = number(j[i], [&] { return fmt::format("{}[{}]", field(), i); });
         return out;
     }
-    std::array<double, 4> numbers(const json& j, std::string_view field, std::size_t n) const {
+    std::array<double, 4> numbers(Value j, std::string_view field, std::size_t n) const {
         return numbers(j, [field] { return field; }, n);
     }
 
-    void read_matrix(const json& m, raw_key& k) const {
+    void read_matrix(Value m, raw_key& k) const {
         if (!m.is_array() || (m.size() != 3 && m.size() != 4))
             fail(fmt::format("'matrix': expected 3 or 4 rows, got {}",
-                             m.is_array() ? fmt::format("{} rows", m.size()) : type_name(m)));
+                             m.is_array() ? fmt::format("{} rows", m.size()) : std::string(m.type_name())));
         const std::size_t n = m.size();
         k.kind = n == 4 ? rep::matrix4 : rep::matrix;
         for (std::size_t r = 0; r < n; ++r) {
@@ -181,7 +201,7 @@ private:
         }
     }
 
-    const json& obj_;
+    Value obj_;
     const std::string& source_;
     location at_;
     quat_order order_;
@@ -250,7 +270,7 @@ raw_track read_track(const json& j, std::string name, const std::string& path, k
     t.keys.reserve(keys->size());
     for (std::size_t i = 0; i < keys->size(); ++i)
         t.keys.push_back(
-            key_object_reader((*keys)[i], opts.source, location{0, fmt::format("{}[{}]", keys_path, i)}, order, frames_doc)
+            key_object_reader(dom_value((*keys)[i]), opts.source, location{0, fmt::format("{}[{}]", keys_path, i)}, order, frames_doc)
                 .read());
     return t;
 }
@@ -297,27 +317,36 @@ public:
         do {
             if (!lines_.next(line)) return false;
         } while (trim(line).empty());
-        const std::size_t line_no = lines_.number();
-        const auto where = [&] { return fmt::format("{}:{}", opts_.source, line_no); };
-        const json j = parse(line, opts_.source, line_no);
-        const bool has_track = j.is_object() && j.contains("track");
-        if (line_no_first_ == 0) line_no_first_ = line_no, named_ = has_track;
-        if (has_track != named_)
-            throw input_error(where(), "some lines have a 'track' and some do not: expected all or none");
-        track.clear();
-        if (has_track) {
-            if (!j.at("track").is_string())
-                throw input_error(where(), fmt::format("'track': expected a string, got {}", type_name(j.at("track"))));
-            track = j.at("track").get<std::string>();
-            check_track_name(track, where());
-        }
-        k = key_object_reader(j, opts_.source, location{line_no, {}}, opts_.order, true).read();
+        if (fast_.parse(line)) read(fast_.root(), track, k);
+        else read(dom_value(parse(line, opts_.source, lines_.number())), track, k);
         return true;
     }
 
 private:
+    template <class Value>
+    void read(Value j, std::string& track, raw_key& k) {
+        const std::size_t line_no = lines_.number();
+        const auto where = [&] { return fmt::format("{}:{}", opts_.source, line_no); };
+        const auto track_field = j.is_object() ? j.member("track") : std::nullopt;
+        if (line_no_first_ == 0) {
+            line_no_first_ = line_no;
+            named_ = track_field.has_value();
+        }
+        if (track_field.has_value() != named_)
+            throw input_error(where(), "some lines have a 'track' and some do not: expected all or none");
+        track.clear();
+        if (track_field) {
+            if (!track_field->is_string())
+                throw input_error(where(), fmt::format("'track': expected a string, got {}", track_field->type_name()));
+            track = track_field->string();
+            check_track_name(track, where());
+        }
+        k = key_object_reader(j, opts_.source, location{line_no, {}}, opts_.order, true).read();
+    }
+
     line_reader lines_;
     const read_options& opts_;
+    json_line fast_;  // most lines; the rest, and all errors, by nlohmann-json
     std::size_t line_no_first_ = 0;
     bool named_ = false;
 };

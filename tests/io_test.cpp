@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "helpers.hpp"
+#include "keyrot/json_line.hpp"
 
 using namespace keyrot;
 
@@ -201,6 +202,53 @@ TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
                    format::ndjson) == "in:2: some lines have a 'track' and some do not: expected all or none");
     CHECK(error_of("{\"track\": 7, \"time\": 0, \"quat\": [1,0,0,0]}\n", format::ndjson) ==
           "in:1: 'track': expected a string, got number");
+}
+
+TEST_CASE("NDJSON: lines json_line takes give the keys and messages nlohmann-json's reading gives") {
+    // Each line twice: as written, which json_line takes, and with a member
+    // json_line declines (an escaped string), which nlohmann-json reads.
+    const auto dump = [](const std::string& text) {
+        try {
+            std::string out;
+            for (const auto& t : read(text, format::ndjson).tracks)
+                for (const raw_key& k : t.keys) {
+                    out += fmt::format("{} {} {} {} {} {} [{}]", t.name, k.at.line, k.time.value_or(-1), k.frame.value_or(-1),
+                                       static_cast<int>(k.kind), k.translation.has_value(), fmt::join(k.values, " "));
+                    if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+                    out += '\n';
+                }
+            return out;
+        } catch (const input_error& e) {
+            return std::string(e.what());
+        }
+    };
+    json_line line;
+    for (const std::string key : {
+             R"("time": 0.5, "quat": [0.5, -0.5, 0.5, -0.5])", R"("frame": 3, "time": -0, "quat": {"w": 1, "x": 0, "y": -0, "z": 0})",
+             R"("time": 1e-3, "axis": [0, 0, 1], "angle": 90, "translation": [1, -2.5, 3e2])",
+             R"("time": 2, "rotvec": [0.1, 0.2, 0.3])", R"("time": 2, "euler": [10, 20, 30])",
+             R"("time": 2, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]])",
+             R"("time": 2, "matrix": [[1, 0, 0, 5], [0, 1, 0, 6], [0, 0, 1, 7], [0, 0, 0, 1]])",
+             R"("time": 0, "quat": [1, 0, "x", 0])", R"("time": 0, "quat": {"w": 1, "x": 0, "y": null, "z": 0})",
+             R"("time": 0, "quat": {"w": 1, "x": 0, "z": 0})", R"("time": 0, "axis": [0, 0, true], "angle": 90)",
+             R"("time": 0, "axis": [0, 0, 1], "angle": "90")", R"("time": 0, "axis": [0, 0, 1])", R"("time": 0, "angle": 9)",
+             R"("time": 0, "rotvec": [0, [0], 0])", R"("time": 0, "euler": [{}, 0, 0])",
+             R"("time": 0, "matrix": [[1, 0, 0], [0, 1, "0"], [0, 0, 1]])", R"("time": 0, "matrix": [[1, 0, 0], [0, 1], [0, 0, 1]])",
+             R"("time": 0, "matrix": 5)", R"("time": 0, "matrix": [[1]])", R"("time": 0, "quat": [1, 0, 0, 0], "translation": [0, "1", 2])",
+             R"("frame": "3", "quat": [1, 0, 0, 0])", R"("quat": [1, 0, 0, 0])", R"("time": 0, "quat": [1, 0, 0, 0], "rotvec": [0, 0, 0])",
+             R"("time": 0)", R"("time": 0, "quat": [1, 0, 0])", R"("time": "0", "quat": [1, 0, 0, 0])",
+             R"("track": "hip", "time": 0, "quat": [1, 0, 0, 0])", R"("track": 7, "time": 0, "quat": [1, 0, 0, 0])",
+             R"("track": "a\tb", "time": 0, "quat": [1, 0, 0, 0])",
+         }) {
+        CAPTURE(key);
+        const std::string taken = "{" + key + "}", declined = "{\"note\": \"\\u00e9\", " + key + "}";
+        CHECK(line.parse(taken) == (key.find('\\') == std::string::npos));
+        CHECK(!line.parse(declined));
+        CHECK(dump(taken + "\n") == dump(declined + "\n"));
+        CHECK(dump("\n" + declined + "\n" + taken + "\n") == dump("\n" + taken + "\n" + declined + "\n"));
+    }
+    // The dump is not blind: the two lines differ when a number does.
+    CHECK(dump(R"({"time": 0, "quat": [1, 0, 0, 0]})") != dump(R"({"time": 0, "quat": [1, -0.0, 0, 0]})"));
 }
 
 namespace {

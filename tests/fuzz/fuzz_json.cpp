@@ -1,10 +1,13 @@
-// libFuzzer target: the JSON and NDJSON readers and key validation.
+// libFuzzer target: the JSON and NDJSON readers and key validation, and
+// json_line against nlohmann-json.
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
 
+#include "../json_same.hpp"
 #include "check.hpp"
 #include "keyrot/io.hpp"
+#include "keyrot/json_line.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     std::ostringstream err;
@@ -17,6 +20,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             const auto doc = keyrot::read_document(text, f, opts, warn);
             for (const auto& raw : doc.tracks) keyrot::fuzz::check_track(keyrot::make_track(raw, warn));
         } catch (const keyrot::error&) {
+        }
+    }
+    // What json_line takes, nlohmann-json must read as the same value.
+    keyrot::json_line line;
+    if (line.parse(text)) {
+        try {
+            keyrot::fuzz::require(keyrot::test::same_json(nlohmann::json::parse(text), line.root()));
+        } catch (const nlohmann::json::exception&) {
+            std::abort();
         }
     }
     return 0;

@@ -1,0 +1,159 @@
+#include "keyrot/json_line.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace keyrot {
+namespace {
+
+// Bounds that no key comes near (a 4x4 matrix is 3 deep, 4 wide, 21 values),
+// so that a hostile line costs nlohmann-json's time, never quadratic time here.
+constexpr int max_depth = 8;
+constexpr std::uint32_t max_width = 32;
+constexpr std::size_t max_values = 128;
+
+bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
+
+}  // namespace
+
+std::string_view json_line::value::type_name() const noexcept {
+    switch (type()) {
+        case kind::null: return "null";
+        case kind::boolean: return "boolean";
+        case kind::number: return "number";
+        case kind::string: return "string";
+        case kind::array: return "array";
+        case kind::object: return "object";
+    }
+    return "";
+}
+
+json_line::value json_line::value::operator[](std::size_t i) const noexcept {
+    std::uint32_t at = item().first;
+    for (; i > 0; --i) at = line_->items_[at].next;
+    return {*line_, at};
+}
+
+std::optional<json_line::value> json_line::value::member(std::string_view name) const noexcept {
+    if (!is_object()) return std::nullopt;
+    for (std::uint32_t at = item().first; at != 0; at = line_->items_[at].next)
+        if (line_->items_[at].name == name) return value{*line_, at};
+    return std::nullopt;
+}
+
+bool json_line::parse(std::string_view text) {
+    items_.clear();
+    p_ = text.data();
+    end_ = p_ + text.size();
+    skip_space();
+    if (!parse_value(0)) return false;
+    skip_space();
+    return p_ == end_;
+}
+
+void json_line::skip_space() noexcept {
+    while (p_ != end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\n' || *p_ == '\r')) ++p_;
+}
+
+bool json_line::parse_value(int depth) {
+    if (p_ == end_ || items_.size() == max_values) return false;
+    const auto index = static_cast<std::uint32_t>(items_.size());
+    items_.emplace_back();
+    switch (*p_) {
+        case '{': return parse_container(depth, true);
+        case '[': return parse_container(depth, false);
+        case '"': items_[index].type = kind::string; return parse_string(items_[index].text);
+        case 't': items_[index].type = kind::boolean; return parse_literal("true");
+        case 'f': items_[index].type = kind::boolean; return parse_literal("false");
+        case 'n': return parse_literal("null");
+        default: items_[index].type = kind::number; return parse_number(items_[index].number);
+    }
+}
+
+bool json_line::parse_container(int depth, bool object) {
+    if (depth == max_depth) return false;
+    const auto index = static_cast<std::uint32_t>(items_.size() - 1);
+    items_[index].type = object ? kind::object : kind::array;
+    const char close = object ? '}' : ']';
+    ++p_;
+    skip_space();
+    std::uint32_t last = 0;
+    if (p_ != end_ && *p_ == close) {
+        ++p_;
+        return true;
+    }
+    while (true) {
+        std::string_view name;
+        if (object) {
+            if (p_ == end_ || *p_ != '"' || !parse_string(name)) return false;
+            // Duplicate names: nlohmann-json keeps the last; leave it to it.
+            for (std::uint32_t at = items_[index].first; at != 0; at = items_[at].next)
+                if (items_[at].name == name) return false;
+            skip_space();
+            if (p_ == end_ || *p_ != ':') return false;
+            ++p_;
+            skip_space();
+        }
+        const auto element = static_cast<std::uint32_t>(items_.size());
+        if (!parse_value(depth + 1)) return false;
+        items_[element].name = name;
+        (last == 0 ? items_[index].first : items_[last].next) = element;
+        last = element;
+        if (++items_[index].size > max_width) return false;
+        skip_space();
+        if (p_ == end_ || (*p_ != close && *p_ != ',')) return false;
+        if (*p_++ == close) return true;
+        skip_space();
+    }
+}
+
+bool json_line::parse_string(std::string_view& out) {
+    const char* const begin = ++p_;
+    for (; p_ != end_; ++p_) {
+        const auto c = static_cast<unsigned char>(*p_);
+        if (c == '"') {
+            out = {begin, static_cast<std::size_t>(p_ - begin)};
+            ++p_;
+            return true;
+        }
+        if (c < 0x20 || c >= 0x7f || c == '\\') return false;  // escapes, UTF-8 and errors: nlohmann-json's
+    }
+    return false;
+}
+
+bool json_line::parse_literal(std::string_view word) {
+    if (static_cast<std::size_t>(end_ - p_) < word.size() || std::string_view(p_, word.size()) != word) return false;
+    p_ += word.size();
+    return true;
+}
+
+// JSON's grammar exactly: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
+bool json_line::parse_number(double& out) {
+    const char* const begin = p_;
+    if (p_ != end_ && *p_ == '-') ++p_;
+    if (p_ == end_ || !is_digit(*p_)) return false;
+    if (*p_++ != '0')
+        while (p_ != end_ && is_digit(*p_)) ++p_;
+    bool integer = true;
+    if (p_ != end_ && *p_ == '.') {
+        integer = false;
+        if (++p_ == end_ || !is_digit(*p_)) return false;
+        while (p_ != end_ && is_digit(*p_)) ++p_;
+    }
+    if (p_ != end_ && (*p_ == 'e' || *p_ == 'E')) {
+        integer = false;
+        if (++p_ != end_ && (*p_ == '+' || *p_ == '-')) ++p_;
+        if (p_ == end_ || !is_digit(*p_)) return false;
+        while (p_ != end_ && is_digit(*p_)) ++p_;
+    }
+    // Correctly rounded, as strtod and the integer conversions nlohmann-json
+    // uses are; out of range (overflow, and underflow where from_chars
+    // reports it) is left to it.
+    const auto [end, ec] = std::from_chars(begin, p_, out);
+    if (ec != std::errc{} || end != p_ || !std::isfinite(out)) return false;
+    // nlohmann-json holds "-0" as the integer 0, which is +0.0 as a double.
+    if (integer && out == 0) out = 0;
+    return true;
+}
+
+}  // namespace keyrot

@@ -1,0 +1,139 @@
+#include <doctest/doctest.h>
+
+#include <random>
+#include <string>
+#include <vector>
+
+#include "json_same.hpp"
+#include "keyrot/json_line.hpp"
+
+using keyrot::json_line;
+using keyrot::test::same_json;
+
+namespace {
+
+/// json_line takes `text`, and nlohmann-json reads the same value from it.
+bool taken_as_nlohmann(json_line& line, const std::string& text) {
+    if (!line.parse(text)) return false;
+    try {
+        return same_json(nlohmann::json::parse(text), line.root());
+    } catch (const nlohmann::json::exception&) {
+        return false;  // json_line took what nlohmann-json refuses
+    }
+}
+
+}  // namespace
+
+TEST_CASE("json_line takes key lines, numbers and literals as nlohmann-json reads them") {
+    json_line line;
+    for (const std::string& text : std::vector<std::string>{
+             R"({"time": 0, "quat": [1, 0, 0, 0]})",
+             R"({"track": "left knee", "frame": 12, "time": 0.5, "axis": [0, 0, 1], "angle": 90})",
+             R"({"time":1.25,"rotvec":[0.1,-0.2,3e-3],"translation":[1,2,3]})",
+             R"({"time": 2, "matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]})",
+             R"({"time": 2, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}, "note": null, "ok": true, "bad": false})",
+             "\t{ \"time\" :\r\n 3 , \"euler\" : [ 10 , 20 , 30 ] }  ",
+             "[]", "{}", "[[], {}, [[]]]", "\"\"", "\"a string, with: [brackets]\"", "true", "false", "null",
+             // -0 is nlohmann-json's integer 0, a +0.0; -0.0 and -0e0 keep the sign.
+             "0", "-0", "-0.0", "-0e0", "0.1", "1e-5", "1E+5", "2.5e3", "-12.75",
+             // Integers past 2^53, int64 and uint64 round to the nearest double.
+             "9007199254740993", "-9223372036854775808", "-9223372036854775809", "18446744073709551615",
+             "18446744073709551617", "123456789012345678901234567890",
+             // Halfway cases, the smallest normal and subnormal, the largest double.
+             "0.30000000000000004", "2.2250738585072014e-308", "4.9406564584124654e-324", "1.7976931348623157e308",
+             "9007199254740993.0000000000000000000001",
+         }) {
+        CAPTURE(text);
+        CHECK(taken_as_nlohmann(line, text));
+    }
+    REQUIRE(line.parse("-0"));
+    CHECK(!std::signbit(line.root().number()));
+    REQUIRE(line.parse("-0.0"));
+    CHECK(std::signbit(line.root().number()));
+}
+
+TEST_CASE("json_line declines escapes, non-ASCII, duplicate names, deep or wide values and every syntax error") {
+    json_line line;
+    const std::string deep = std::string(9, '[') + std::string(9, ']');
+    std::string wide = "[0";
+    for (int i = 0; i < 32; ++i) wide += ",0";
+    wide += "]";
+    for (const std::string& text : std::vector<std::string>{
+             // nlohmann-json takes these, and words them or decodes them itself.
+             R"({"track": "a\u0062"})", R"("tab\there")", "\"caf\xc3\xa9\"", R"({"a": 1, "a": 2})", deep, wide,
+             "1e999", "-1e999",
+             // Syntax errors, which nlohmann-json words.
+             "", " ", "01", "-01", "1.", ".5", "+1", "-", "1e", "1e+", "0x10", "1.5.2", "Infinity", "NaN",
+             "[1,]", "[,1]", "[1 2]", "{\"a\"}", "{\"a\":}", "{a: 1}", "{\"a\": 1,}", "{\"a\": 1 \"b\": 2}",
+             "{'a': 1}", "tru", "nul", "falsey", "\"abc", "\"a\x01\"", "{} x", "[]]", "{}}", "[", "{",
+             "\"a\x7f\"", "\v1",
+         }) {
+        CAPTURE(text);
+        CHECK(!line.parse(text));
+    }
+}
+
+TEST_CASE("json_line against nlohmann-json on random lines, valid and broken") {
+    // Random values from a few spellings each, one in two with one byte
+    // changed, dropped or added: whatever json_line takes, nlohmann-json must
+    // read as the same value.
+    std::mt19937 gen(20261122);
+    const std::vector<std::string> numbers = {"0", "-0", "1", "-2.5", "1e3", "6.02E+23", "1e-320", "0.1",
+                                              "18446744073709551616", "-7", "3.14159265358979"};
+    const std::vector<std::string> names = {"time", "quat", "a", "", "x y", "track"};
+    const auto pick = [&](const std::vector<std::string>& from) {
+        return from[std::uniform_int_distribution<std::size_t>(0, from.size() - 1)(gen)];
+    };
+    const auto random_value = [&](const auto& self, int depth) -> std::string {
+        switch (std::uniform_int_distribution<int>(0, depth > 3 ? 2 : 5)(gen)) {
+            case 0:
+            case 1: return pick(numbers);
+            case 2: return std::vector<std::string>{"true", "false", "null", "\"s\"", "\"\""}[gen() % 5];
+            case 3:
+            case 4: {
+                std::string out = "[";
+                for (auto i = gen() % 5; i > 0; --i) {
+                    out += self(self, depth + 1);
+                    out += i > 1 ? ", " : "";
+                }
+                return out += "]";
+            }
+            default: {
+                std::string out = "{";
+                for (auto i = gen() % 4; i > 0; --i) {
+                    out += '"';
+                    out += pick(names);
+                    out += "\": ";
+                    out += self(self, depth + 1);
+                    out += i > 1 ? "," : "";
+                }
+                return out += "}";
+            }
+        }
+    };
+    const std::string bytes = "[]{},:\"-+.eE0123456789 \\tfnu\xc3";
+    json_line line;
+    int taken = 0, broken_taken = 0;
+    for (int n = 0; n < 20000; ++n) {
+        std::string text = random_value(random_value, 0);
+        const bool broken = n % 2 == 1;
+        if (broken) {
+            const std::size_t at = gen() % (text.size() + 1);
+            const char c = bytes[gen() % bytes.size()];
+            switch (gen() % 3) {
+                case 0: text.insert(at, 1, c); break;
+                case 1: if (at < text.size()) text.erase(at, 1); break;
+                default: if (at < text.size()) text[at] = c; break;
+            }
+        }
+        CAPTURE(text);
+        if (!line.parse(text)) continue;
+        ++taken;
+        broken_taken += broken;
+        CHECK(taken_as_nlohmann(line, text));
+    }
+    // Not a vacuous check: most valid lines are taken (the rest have duplicate
+    // names), and so are the changes that leave a line valid.
+    CHECK(taken > 8000);
+    CHECK(broken_taken > 1000);
+}
