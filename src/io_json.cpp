@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "keyrot/json_line.hpp"
+#include "keyrot/flat_json.hpp"
 
 namespace keyrot {
 namespace {
@@ -20,9 +20,7 @@ using json = nlohmann::json;
 /// document cannot exhaust the parser's stack.
 constexpr int max_depth = 64;
 
-std::string type_name(const json& j) { return j.type_name(); }
-
-/// A nlohmann-json value with json_line::value's queries, so that one key
+/// A nlohmann-json value with flat_json::value's queries, so that one
 /// reader serves both.
 class dom_value {
 public:
@@ -39,6 +37,14 @@ public:
     std::optional<dom_value> member(std::string_view name) const {
         const auto it = j_->find(name);
         return it == j_->end() ? std::nullopt : std::optional(dom_value(*it));
+    }
+    template <class F>
+    void elements(F&& f) const {
+        for (const json& e : *j_) f(dom_value(e));
+    }
+    template <class F>
+    void members(F&& f) const {
+        for (const auto& [name, value] : j_->items()) f(std::string_view(name), dom_value(value));
     }
 
 private:
@@ -93,7 +99,7 @@ json parse(std::string_view text, std::string_view source, std::size_t first_lin
     }
 }
 
-/// Reads the fields of one key object: a dom_value or a json_line::value.
+/// Reads the fields of one key object: a dom_value or a flat_json::value.
 template <class Value>
 class key_object_reader {
 public:
@@ -210,13 +216,14 @@ private:
 
 /// Applies a document's own fields ("angles", "euler", "quat_order", "fps")
 /// over the settings it inherits.
-void apply_fields(const json& obj, key_settings& s, quat_order& order, const std::string& where) {
+template <class Value>
+void apply_fields(Value obj, key_settings& s, quat_order& order, const std::string& where) {
     if (!obj.is_object()) return;
     auto text = [&](const char* field) -> std::optional<std::string> {
-        if (!obj.contains(field)) return std::nullopt;
-        if (!obj.at(field).is_string())
-            throw input_error(where, fmt::format("'{}': expected a string, got {}", field, type_name(obj.at(field))));
-        return obj.at(field).get<std::string>();
+        const auto v = obj.member(field);
+        if (!v) return std::nullopt;
+        if (!v->is_string()) throw input_error(where, fmt::format("'{}': expected a string, got {}", field, v->type_name()));
+        return std::string(v->string());
     };
     if (auto a = text("angles")) {
         const auto u = parse_angle_unit(*a);
@@ -233,11 +240,10 @@ void apply_fields(const json& obj, key_settings& s, quat_order& order, const std
         if (!q) throw input_error(where, fmt::format("'quat_order': expected \"wxyz\" or \"xyzw\", got \"{}\"", *o));
         order = *q;
     }
-    if (obj.contains("fps")) {
-        const json& f = obj.at("fps");
-        if (!f.is_number() || !(f.get<double>() > 0) || !std::isfinite(f.get<double>()))
+    if (const auto f = obj.member("fps")) {
+        if (!f->is_number() || !(f->number() > 0) || !std::isfinite(f->number()))
             throw input_error(where, "'fps': expected a positive number");
-        s.key_fps = f.get<double>();
+        s.key_fps = f->number();
     }
 }
 
@@ -246,64 +252,76 @@ std::string join_path(const std::string& prefix, const std::string& item) {
 }
 
 /// A track object ({"keys": [...]}, {"frames": [...]}) or a bare array of keys.
-raw_track read_track(const json& j, std::string name, const std::string& path, key_settings settings,
-                     quat_order order, const read_options& opts) {
+template <class Value>
+raw_track read_track(Value j, std::string name, const std::string& path, key_settings settings, quat_order order,
+                     const read_options& opts) {
     const std::string where = fmt::format("{}: {}", opts.source, path.empty() ? "document" : path);
     apply_fields(j, settings, order, where);
-    const json* keys = &j;
+    std::optional<Value> keys = j;
     std::string field;
     bool frames_doc = false;
     if (j.is_object()) {
-        const bool has_keys = j.contains("keys"), has_frames = j.contains("frames");
-        if (has_keys == has_frames)
-            throw input_error(where, has_keys ? "both 'keys' and 'frames': expected one"
-                                              : "expected 'keys', 'frames' or 'tracks'");
-        field = has_keys ? "keys" : "frames";
-        frames_doc = has_frames;
-        keys = &j.at(field);
+        const auto with_keys = j.member("keys"), with_frames = j.member("frames");
+        if (with_keys.has_value() == with_frames.has_value())
+            throw input_error(where, with_keys ? "both 'keys' and 'frames': expected one"
+                                               : "expected 'keys', 'frames' or 'tracks'");
+        field = with_keys ? "keys" : "frames";
+        frames_doc = with_frames.has_value();
+        keys = with_keys ? with_keys : with_frames;
     }
     const std::string keys_path = field.empty() ? path : join_path(path, field);
     if (!keys->is_array())
         throw input_error(where, fmt::format("'{}': expected an array of keys, got {}", field.empty() ? name : field,
-                                             type_name(*keys)));
+                                             keys->type_name()));
     raw_track t{std::move(name), location{0, keys_path.empty() ? "document" : keys_path}, settings, {}};
     t.keys.reserve(keys->size());
-    for (std::size_t i = 0; i < keys->size(); ++i)
-        t.keys.push_back(
-            key_object_reader(dom_value((*keys)[i]), opts.source, location{0, fmt::format("{}[{}]", keys_path, i)}, order, frames_doc)
-                .read());
+    keys->elements([&](Value key) {
+        const location at{0, fmt::format("{}[{}]", keys_path, t.keys.size())};
+        t.keys.push_back(key_object_reader(key, opts.source, at, order, frames_doc).read());
+    });
     return t;
+}
+
+template <class Value>
+raw_document read_json_value(Value j, const read_options& opts) {
+    raw_document doc;
+    key_settings settings = opts.settings;
+    quat_order order = opts.order;
+    const auto tracks = j.is_object() ? j.member("tracks") : std::nullopt;
+    if (tracks) {
+        const std::string where = fmt::format("{}: document", opts.source);
+        apply_fields(j, settings, order, where);
+        if (!tracks->is_object())
+            throw input_error(where, fmt::format("'tracks': expected an object of named tracks, got {}", tracks->type_name()));
+        if (tracks->size() == 0) throw input_error(where, "'tracks' is empty: expected at least one track");
+        doc.named = true;
+        tracks->members([&](std::string_view name_view, Value value) {
+            const std::string name(name_view);
+            check_track_name(name, where);
+            doc.tracks.push_back(read_track(value, name, "tracks." + name, settings, order, opts));
+        });
+    } else if (j.is_object() || j.is_array()) {
+        doc.tracks.push_back(read_track(j, "", "", settings, order, opts));
+    } else {
+        throw input_error(opts.source, fmt::format("expected a JSON object or array, got {}", j.type_name()));
+    }
+    return doc;
 }
 
 }  // namespace
 
 raw_document read_json(std::istream& in, const read_options& opts, warnings&) {
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    const json j = parse(text, opts.source, 1);
-    raw_document doc;
-    key_settings settings = opts.settings;
-    quat_order order = opts.order;
-    if (j.is_object() && j.contains("tracks")) {
-        const std::string where = fmt::format("{}: document", opts.source);
-        apply_fields(j, settings, order, where);
-        const json& tracks = j.at("tracks");
-        if (!tracks.is_object())
-            throw input_error(where, fmt::format("'tracks': expected an object of named tracks, got {}", type_name(tracks)));
-        if (tracks.empty()) throw input_error(where, "'tracks' is empty: expected at least one track");
-        doc.named = true;
-        for (const auto& [name, value] : tracks.items()) {
-            check_track_name(name, where);
-            doc.tracks.push_back(read_track(value, name, "tracks." + name, settings, order, opts));
-        }
-    } else if (j.is_object() || j.is_array()) {
-        doc.tracks.push_back(read_track(j, "", "", settings, order, opts));
-    } else {
-        throw input_error(opts.source, fmt::format("expected a JSON object or array, got {}", type_name(j)));
-    }
-    return doc;
+    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    flat_json flat;
+    if (flat.parse(text)) return read_json_value(flat.root(), opts);
+    return read_json_value(dom_value(parse(text, opts.source, 1)), opts);
 }
 
 namespace {
+
+/// A key line has a dozen values, a 4x4 matrix 21: this bounds flat_json's
+/// work on a hostile line.
+constexpr std::size_t max_line_values = 128;
 
 class ndjson_reader final : public key_reader {
 public:
@@ -346,7 +364,7 @@ private:
 
     line_reader lines_;
     const read_options& opts_;
-    json_line fast_;  // most lines; the rest, and all errors, by nlohmann-json
+    flat_json fast_{max_line_values};  // most lines; the rest, and all errors, by nlohmann-json
     std::size_t line_no_first_ = 0;
     bool named_ = false;
 };

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "helpers.hpp"
-#include "keyrot/json_line.hpp"
+#include "keyrot/flat_json.hpp"
 
 using namespace keyrot;
 
@@ -204,25 +204,71 @@ TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
           "in:1: 'track': expected a string, got number");
 }
 
-TEST_CASE("NDJSON: lines json_line takes give the keys and messages nlohmann-json's reading gives") {
-    // Each line twice: as written, which json_line takes, and with a member
-    // json_line declines (an escaped string), which nlohmann-json reads.
-    const auto dump = [](const std::string& text) {
-        try {
-            std::string out;
-            for (const auto& t : read(text, format::ndjson).tracks)
-                for (const raw_key& k : t.keys) {
-                    out += fmt::format("{} {} {} {} {} {} [{}]", t.name, k.at.line, k.time.value_or(-1), k.frame.value_or(-1),
-                                       static_cast<int>(k.kind), k.translation.has_value(), fmt::join(k.values, " "));
-                    if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
-                    out += '\n';
-                }
-            return out;
-        } catch (const input_error& e) {
-            return std::string(e.what());
-        }
-    };
-    json_line line;
+namespace {
+
+/// Every key of a document (bits of each number, via the shortest
+/// round-trip digits) and its track, or the message reading stops with.
+std::string dump(const std::string& text, format f) {
+    try {
+        std::string out;
+        for (const auto& t : read(text, f).tracks)
+            for (const raw_key& k : t.keys) {
+                out += fmt::format("{} {} {} {} {} {} {} {} {} {} [{}]", t.name, t.at.path, static_cast<int>(t.settings.angles),
+                                   t.settings.euler ? t.settings.euler->name : "-", t.settings.key_fps, k.at.line, k.at.path,
+                                   k.time.value_or(-1), k.frame.value_or(-1), static_cast<int>(k.kind),
+                                   fmt::join(k.values, " "));
+                if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+                out += '\n';
+            }
+        return out;
+    } catch (const input_error& e) {
+        return std::string(e.what());
+    }
+}
+
+}  // namespace
+
+TEST_CASE("JSON: documents flat_json takes give the keys and messages nlohmann-json's reading gives") {
+    // Each document twice: as written, which flat_json takes, and with a
+    // member flat_json declines (an escaped string), which nlohmann-json reads.
+    flat_json flat;
+    for (const std::string doc : {
+             R"({"keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "rotvec": [0, 0, 1.5], "translation": [1, 2, 3]}]})",
+             R"({"fps": 30, "frames": [{"frame": 0, "time": -0, "euler": [10, 20, 30]}, {"frame": 3, "euler": [0, 0, 0]}],
+                 "euler": "ZYX", "angles": "radians", "quat_order": "xyzw"})",
+             R"({"quat_order": "xyzw", "keys": [{"time": 0, "quat": [0, 0, 0, 1]}, {"time": 1, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}}]})",
+             R"({"angles": "radians", "tracks": {"zeta": {"keys": [{"time": 0, "axis": [0, 0, 1], "angle": 1}]},
+                 "alpha": {"angles": "degrees", "fps": 12, "frames": [{"frame": 1, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]},
+                 "mid": [{"time": 2, "matrix": [[1, 0, 0, 4], [0, 1, 0, 5], [0, 0, 1, 6], [0, 0, 0, 1]]}]}})",
+             R"([{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 5e-1, "quat": [0, 1, 0, 0]}])",
+             R"({"tracks": {"a": {"keys": [{"time": 0, "quat": [1, 0, "x", 0]}]}}})",
+             R"({"tracks": {"b": {"keys": []}, "a": {"keys": 5}}})", R"({"tracks": {}})", R"({"tracks": []})",
+             R"({"tracks": {"a\u0001": {"keys": []}}})", R"({"keys": [], "frames": []})", R"({"other": 1})",
+             R"({"angles": "grads", "keys": []})", R"({"euler": "XXY", "keys": []})", R"({"euler": 5, "keys": []})",
+             R"({"quat_order": "wzyx", "keys": []})", R"({"fps": 0, "keys": []})", R"({"fps": "24", "keys": []})",
+             R"({"keys": [{"time": 0, "frame": 0, "quat": [1, 0, 0, 0]}]})", R"({"keys": [{"quat": [1, 0, 0, 0]}]})",
+             R"({"keys": [{"time": 0, "matrix": [[1, 0, 0], [0, 1, 0]]}]})", R"({"keys": [7]})", R"({"keys": [null]})",
+         }) {
+        CAPTURE(doc);
+        const std::string declined = doc.front() == '{' ? "{\"note\": \"\\u00e9\", " + doc.substr(1)
+                                                        : "[{\"note\": \"\\u00e9\", " + doc.substr(2);
+        CHECK(flat.parse(doc) == (doc.find('\\') == std::string::npos));
+        CHECK(!flat.parse(declined));
+        CHECK(dump(doc, format::json) == dump(declined, format::json));
+    }
+    // Not blind to the order of tracks, nor to a track's own settings.
+    const std::string two = R"({"tracks": {"b": [{"time": 0, "quat": [1, 0, 0, 0]}], "a": {"fps": 12, "keys": [{"frame": 0, "quat": [1, 0, 0, 0]}]}}})";
+    const std::string order = dump(two, format::json);
+    CHECK(order.find("\na ") == std::string::npos);
+    CHECK(order.rfind("a ", 0) == 0);
+    CHECK(order.find(" 12 ") != std::string::npos);
+}
+
+TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-json's reading gives") {
+    // Each line twice: as written, which flat_json takes, and with a member
+    // flat_json declines (an escaped string), which nlohmann-json reads.
+    const auto dump = [](const std::string& text) { return ::dump(text, format::ndjson); };
+    flat_json line;
     for (const std::string key : {
              R"("time": 0.5, "quat": [0.5, -0.5, 0.5, -0.5])", R"("frame": 3, "time": -0, "quat": {"w": 1, "x": 0, "y": -0, "z": 0})",
              R"("time": 1e-3, "axis": [0, 0, 1], "angle": 90, "translation": [1, -2.5, 3e2])",

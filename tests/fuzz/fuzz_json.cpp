@@ -1,5 +1,5 @@
 // libFuzzer target: the JSON and NDJSON readers and key validation, and
-// json_line against nlohmann-json.
+// flat_json against nlohmann-json.
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
@@ -7,7 +7,7 @@
 #include "../json_same.hpp"
 #include "check.hpp"
 #include "keyrot/io.hpp"
-#include "keyrot/json_line.hpp"
+#include "keyrot/flat_json.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     std::ostringstream err;
@@ -22,8 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         } catch (const keyrot::error&) {
         }
     }
-    // What json_line takes, nlohmann-json must read as the same value.
-    keyrot::json_line line;
+    // What flat_json takes, nlohmann-json must read as the same value.
+    keyrot::flat_json line;
     if (line.parse(text)) {
         try {
             keyrot::fuzz::require(keyrot::test::same_json(nlohmann::json::parse(text), line.root()));

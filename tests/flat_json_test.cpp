@@ -1,31 +1,33 @@
 #include <doctest/doctest.h>
 
+#include <fmt/format.h>
+
 #include <random>
 #include <string>
 #include <vector>
 
 #include "json_same.hpp"
-#include "keyrot/json_line.hpp"
+#include "keyrot/flat_json.hpp"
 
-using keyrot::json_line;
+using keyrot::flat_json;
 using keyrot::test::same_json;
 
 namespace {
 
-/// json_line takes `text`, and nlohmann-json reads the same value from it.
-bool taken_as_nlohmann(json_line& line, const std::string& text) {
+/// flat_json takes `text`, and nlohmann-json reads the same value from it.
+bool taken_as_nlohmann(flat_json& line, const std::string& text) {
     if (!line.parse(text)) return false;
     try {
         return same_json(nlohmann::json::parse(text), line.root());
     } catch (const nlohmann::json::exception&) {
-        return false;  // json_line took what nlohmann-json refuses
+        return false;  // flat_json took what nlohmann-json refuses
     }
 }
 
 }  // namespace
 
-TEST_CASE("json_line takes key lines, numbers and literals as nlohmann-json reads them") {
-    json_line line;
+TEST_CASE("flat_json takes key lines, numbers and literals as nlohmann-json reads them") {
+    flat_json line;
     for (const std::string& text : std::vector<std::string>{
              R"({"time": 0, "quat": [1, 0, 0, 0]})",
              R"({"track": "left knee", "frame": 12, "time": 0.5, "axis": [0, 0, 1], "angle": 90})",
@@ -52,12 +54,14 @@ TEST_CASE("json_line takes key lines, numbers and literals as nlohmann-json read
     CHECK(std::signbit(line.root().number()));
 }
 
-TEST_CASE("json_line declines escapes, non-ASCII, duplicate names, deep or wide values and every syntax error") {
-    json_line line;
+TEST_CASE("flat_json declines escapes, non-ASCII, duplicate names, deep or wide values and every syntax error") {
+    flat_json line;
     const std::string deep = std::string(9, '[') + std::string(9, ']');
-    std::string wide = "[0";
-    for (int i = 0; i < 32; ++i) wide += ",0";
-    wide += "]";
+    // 257 members: past what it checks for duplicates.
+    std::string wide = "{\"m0\": 0";
+    for (int i = 1; i <= 256; ++i) wide += fmt::format(", \"m{}\": 0", i);
+    wide += "}";
+    REQUIRE(line.parse(wide.substr(0, wide.rfind(',')) + "}"));
     for (const std::string& text : std::vector<std::string>{
              // nlohmann-json takes these, and words them or decodes them itself.
              R"({"track": "a\u0062"})", R"("tab\there")", "\"caf\xc3\xa9\"", R"({"a": 1, "a": 2})", deep, wide,
@@ -71,11 +75,18 @@ TEST_CASE("json_line declines escapes, non-ASCII, duplicate names, deep or wide 
         CAPTURE(text);
         CHECK(!line.parse(text));
     }
+    // A bound on the values, as for an NDJSON line: 128 values, not 129.
+    flat_json bounded(128);
+    std::string array = "[0";
+    for (int i = 1; i < 127; ++i) array += ",0";
+    CHECK(bounded.parse(array + "]"));
+    CHECK(!bounded.parse(array + ",0]"));
+    CHECK(line.parse(array + ",0]"));
 }
 
-TEST_CASE("json_line against nlohmann-json on random lines, valid and broken") {
+TEST_CASE("flat_json against nlohmann-json on random lines, valid and broken") {
     // Random values from a few spellings each, one in two with one byte
-    // changed, dropped or added: whatever json_line takes, nlohmann-json must
+    // changed, dropped or added: whatever flat_json takes, nlohmann-json must
     // read as the same value.
     std::mt19937 gen(20261122);
     const std::vector<std::string> numbers = {"0", "-0", "1", "-2.5", "1e3", "6.02E+23", "1e-320", "0.1",
@@ -112,7 +123,7 @@ TEST_CASE("json_line against nlohmann-json on random lines, valid and broken") {
         }
     };
     const std::string bytes = "[]{},:\"-+.eE0123456789 \\tfnu\xc3";
-    json_line line;
+    flat_json line;
     int taken = 0, broken_taken = 0;
     for (int n = 0; n < 20000; ++n) {
         std::string text = random_value(random_value, 0);

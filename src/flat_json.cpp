@@ -1,22 +1,23 @@
-#include "keyrot/json_line.hpp"
+#include "keyrot/flat_json.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
 namespace keyrot {
 namespace {
 
-// Bounds that no key comes near (a 4x4 matrix is 3 deep, 4 wide, 21 values),
-// so that a hostile line costs nlohmann-json's time, never quadratic time here.
+// Deeper than any keyframe document (a 4x4 matrix in a named track is 7
+// deep), and members checked for duplicates pairwise, so few: a hostile
+// text costs nlohmann-json's time, never quadratic time here.
 constexpr int max_depth = 8;
-constexpr std::uint32_t max_width = 32;
-constexpr std::size_t max_values = 128;
+constexpr std::uint32_t max_members = 256;
 
 bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
 
 }  // namespace
 
-std::string_view json_line::value::type_name() const noexcept {
+std::string_view flat_json::value::type_name() const noexcept {
     switch (type()) {
         case kind::null: return "null";
         case kind::boolean: return "boolean";
@@ -28,22 +29,30 @@ std::string_view json_line::value::type_name() const noexcept {
     return "";
 }
 
-json_line::value json_line::value::operator[](std::size_t i) const noexcept {
-    std::uint32_t at = item().first;
-    for (; i > 0; --i) at = line_->items_[at].next;
-    return {*line_, at};
+flat_json::value flat_json::value::operator[](std::size_t i) const noexcept {
+    std::uint32_t at = first();
+    for (; i > 0; --i) at = json_->items_[at].next;
+    return {*json_, at};
 }
 
-std::optional<json_line::value> json_line::value::member(std::string_view name) const noexcept {
+std::optional<flat_json::value> flat_json::value::member(std::string_view name) const noexcept {
     if (!is_object()) return std::nullopt;
-    for (std::uint32_t at = item().first; at != 0; at = line_->items_[at].next)
-        if (line_->items_[at].name == name) return value{*line_, at};
+    for (std::uint32_t at = first(); at != 0; at = json_->items_[at].next)
+        if (json_->bytes(json_->items_[at].name) == name) return value{*json_, at};
     return std::nullopt;
 }
 
-bool json_line::parse(std::string_view text) {
+std::vector<std::uint32_t> flat_json::by_name(std::uint32_t object) const {
+    std::vector<std::uint32_t> out;
+    for (std::uint32_t at = items_[object].size == 0 ? 0 : object + 1; at != 0; at = items_[at].next) out.push_back(at);
+    std::sort(out.begin(), out.end(), [&](std::uint32_t a, std::uint32_t b) { return bytes(items_[a].name) < bytes(items_[b].name); });
+    return out;
+}
+
+bool flat_json::parse(std::string_view text) {
     items_.clear();
-    p_ = text.data();
+    if (text.size() > UINT32_MAX) return false;
+    begin_ = p_ = text.data();
     end_ = p_ + text.size();
     skip_space();
     if (!parse_value(0)) return false;
@@ -51,13 +60,13 @@ bool json_line::parse(std::string_view text) {
     return p_ == end_;
 }
 
-void json_line::skip_space() noexcept {
+void flat_json::skip_space() noexcept {
     while (p_ != end_ && (*p_ == ' ' || *p_ == '\t' || *p_ == '\n' || *p_ == '\r')) ++p_;
 }
 
-bool json_line::parse_value(int depth) {
-    if (p_ == end_ || items_.size() == max_values) return false;
-    const auto index = static_cast<std::uint32_t>(items_.size());
+bool flat_json::parse_value(int depth) {
+    if (p_ == end_ || items_.size() >= max_values_ || items_.size() == UINT32_MAX) return false;
+    const auto index = items_.size();
     items_.emplace_back();
     switch (*p_) {
         case '{': return parse_container(depth, true);
@@ -70,25 +79,25 @@ bool json_line::parse_value(int depth) {
     }
 }
 
-bool json_line::parse_container(int depth, bool object) {
+bool flat_json::parse_container(int depth, bool object) {
     if (depth == max_depth) return false;
-    const auto index = static_cast<std::uint32_t>(items_.size() - 1);
+    const auto index = items_.size() - 1;
     items_[index].type = object ? kind::object : kind::array;
     const char close = object ? '}' : ']';
     ++p_;
     skip_space();
-    std::uint32_t last = 0;
     if (p_ != end_ && *p_ == close) {
         ++p_;
         return true;
     }
+    std::uint32_t last = 0;
     while (true) {
-        std::string_view name;
+        span name;
         if (object) {
-            if (p_ == end_ || *p_ != '"' || !parse_string(name)) return false;
+            if (p_ == end_ || *p_ != '"' || !parse_string(name) || items_[index].size == max_members) return false;
             // Duplicate names: nlohmann-json keeps the last; leave it to it.
-            for (std::uint32_t at = items_[index].first; at != 0; at = items_[at].next)
-                if (items_[at].name == name) return false;
+            for (std::uint32_t at = last == 0 ? 0 : static_cast<std::uint32_t>(index + 1); at != 0; at = items_[at].next)
+                if (bytes(items_[at].name) == bytes(name)) return false;
             skip_space();
             if (p_ == end_ || *p_ != ':') return false;
             ++p_;
@@ -97,9 +106,9 @@ bool json_line::parse_container(int depth, bool object) {
         const auto element = static_cast<std::uint32_t>(items_.size());
         if (!parse_value(depth + 1)) return false;
         items_[element].name = name;
-        (last == 0 ? items_[index].first : items_[last].next) = element;
+        if (last != 0) items_[last].next = element;
         last = element;
-        if (++items_[index].size > max_width) return false;
+        ++items_[index].size;
         skip_space();
         if (p_ == end_ || (*p_ != close && *p_ != ',')) return false;
         if (*p_++ == close) return true;
@@ -107,12 +116,12 @@ bool json_line::parse_container(int depth, bool object) {
     }
 }
 
-bool json_line::parse_string(std::string_view& out) {
+bool flat_json::parse_string(span& out) {
     const char* const begin = ++p_;
     for (; p_ != end_; ++p_) {
         const auto c = static_cast<unsigned char>(*p_);
         if (c == '"') {
-            out = {begin, static_cast<std::size_t>(p_ - begin)};
+            out = {static_cast<std::uint32_t>(begin - begin_), static_cast<std::uint32_t>(p_ - begin)};
             ++p_;
             return true;
         }
@@ -121,14 +130,14 @@ bool json_line::parse_string(std::string_view& out) {
     return false;
 }
 
-bool json_line::parse_literal(std::string_view word) {
+bool flat_json::parse_literal(std::string_view word) {
     if (static_cast<std::size_t>(end_ - p_) < word.size() || std::string_view(p_, word.size()) != word) return false;
     p_ += word.size();
     return true;
 }
 
 // JSON's grammar exactly: -?(0|[1-9][0-9]*)(.[0-9]+)?([eE][+-]?[0-9]+)?
-bool json_line::parse_number(double& out) {
+bool flat_json::parse_number(double& out) {
     const char* const begin = p_;
     if (p_ != end_ && *p_ == '-') ++p_;
     if (p_ == end_ || !is_digit(*p_)) return false;
