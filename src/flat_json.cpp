@@ -44,8 +44,9 @@ std::optional<flat_json::value> flat_json::value::member(std::string_view name) 
 
 std::vector<std::uint32_t> flat_json::by_name(std::uint32_t object) const {
     std::vector<std::uint32_t> out;
-    for (std::uint32_t at = items_[object].size == 0 ? 0 : object + 1; at != 0; at = items_[at].next) out.push_back(at);
-    std::sort(out.begin(), out.end(), [&](std::uint32_t a, std::uint32_t b) { return bytes(items_[a].name) < bytes(items_[b].name); });
+    for (std::uint32_t at = value{*this, object}.first(); at != 0; at = items_[at].next) out.push_back(at);
+    std::sort(out.begin(), out.end(),
+              [&](std::uint32_t a, std::uint32_t b) { return bytes(items_[a].name) < bytes(items_[b].name); });
     return out;
 }
 

@@ -267,7 +267,7 @@ TEST_CASE("JSON: documents flat_json takes give the keys and messages nlohmann-j
 TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-json's reading gives") {
     // Each line twice: as written, which flat_json takes, and with a member
     // flat_json declines (an escaped string), which nlohmann-json reads.
-    const auto dump = [](const std::string& text) { return ::dump(text, format::ndjson); };
+    const auto dump_lines = [](const std::string& text) { return dump(text, format::ndjson); };
     flat_json line;
     for (const std::string key : {
              R"("time": 0.5, "quat": [0.5, -0.5, 0.5, -0.5])", R"("frame": 3, "time": -0, "quat": {"w": 1, "x": 0, "y": -0, "z": 0})",
@@ -290,11 +290,11 @@ TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-jso
         const std::string taken = "{" + key + "}", declined = "{\"note\": \"\\u00e9\", " + key + "}";
         CHECK(line.parse(taken) == (key.find('\\') == std::string::npos));
         CHECK(!line.parse(declined));
-        CHECK(dump(taken + "\n") == dump(declined + "\n"));
-        CHECK(dump("\n" + declined + "\n" + taken + "\n") == dump("\n" + taken + "\n" + declined + "\n"));
+        CHECK(dump_lines(taken + "\n") == dump_lines(declined + "\n"));
+        CHECK(dump_lines("\n" + declined + "\n" + taken + "\n") == dump_lines("\n" + taken + "\n" + declined + "\n"));
     }
     // The dump is not blind: the two lines differ when a number does.
-    CHECK(dump(R"({"time": 0, "quat": [1, 0, 0, 0]})") != dump(R"({"time": 0, "quat": [1, -0.0, 0, 0]})"));
+    CHECK(dump_lines(R"({"time": 0, "quat": [1, 0, 0, 0]})") != dump_lines(R"({"time": 0, "quat": [1, -0.0, 0, 0]})"));
 }
 
 namespace {

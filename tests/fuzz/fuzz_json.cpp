@@ -6,8 +6,8 @@
 
 #include "../json_same.hpp"
 #include "check.hpp"
-#include "keyrot/io.hpp"
 #include "keyrot/flat_json.hpp"
+#include "keyrot/io.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     std::ostringstream err;
@@ -23,10 +23,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
     }
     // What flat_json takes, nlohmann-json must read as the same value.
-    keyrot::flat_json line;
-    if (line.parse(text)) {
+    keyrot::flat_json flat;
+    if (flat.parse(text)) {
         try {
-            keyrot::fuzz::require(keyrot::test::same_json(nlohmann::json::parse(text), line.root()));
+            keyrot::fuzz::require(keyrot::test::same_json(nlohmann::json::parse(text), flat.root()));
         } catch (const nlohmann::json::exception&) {
             std::abort();
         }
