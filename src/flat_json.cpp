@@ -53,6 +53,9 @@ std::vector<std::uint32_t> flat_json::by_name(std::uint32_t object) const {
 bool flat_json::parse(std::string_view text) {
     items_.clear();
     if (text.size() > UINT32_MAX) return false;
+    // A key takes about 16 bytes a value: room for that, so that a document
+    // is not copied as it grows (untouched room costs no memory).
+    items_.reserve(text.size() / 12);
     begin_ = p_ = text.data();
     end_ = p_ + text.size();
     skip_space();

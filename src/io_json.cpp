@@ -311,7 +311,10 @@ raw_document read_json_value(Value j, const read_options& opts) {
 }  // namespace
 
 raw_document read_json(std::istream& in, const read_options& opts, warnings&) {
-    const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::string text;
+    text.reserve(static_cast<std::size_t>(std::max<std::streamsize>(0, in.rdbuf()->in_avail())));
+    std::array<char, std::size_t{1} << 16> chunk;
+    while (const auto got = in.rdbuf()->sgetn(chunk.data(), chunk.size())) text.append(chunk.data(), static_cast<std::size_t>(got));
     flat_json flat;
     if (flat.parse(text)) return read_json_value(flat.root(), opts);
     return read_json_value(dom_value(parse(text, opts.source, 1)), opts);

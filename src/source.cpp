@@ -40,6 +40,13 @@ protected:
         return traits_type::to_int_type(*gptr());
     }
 
+    /// The bytes left in a regular file, so that a reader of the whole
+    /// stream (JSON) can allocate once.
+    std::streamsize showmanyc() override {
+        struct stat st {};
+        return ::fstat(fd_, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > offset_ ? st.st_size - offset_ : 0;
+    }
+
 private:
     int fd_;
     const std::string& source_;
