@@ -1,6 +1,5 @@
 #include "keyrot/flat_json.hpp"
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -40,14 +39,6 @@ std::optional<flat_json::value> flat_json::value::member(std::string_view name) 
     for (std::uint32_t at = first(); at != 0; at = json_->items_[at].next)
         if (json_->bytes(json_->items_[at].name) == name) return value{*json_, at};
     return std::nullopt;
-}
-
-std::vector<std::uint32_t> flat_json::by_name(std::uint32_t object) const {
-    std::vector<std::uint32_t> out;
-    for (std::uint32_t at = value{*this, object}.first(); at != 0; at = items_[at].next) out.push_back(at);
-    std::sort(out.begin(), out.end(),
-              [&](std::uint32_t a, std::uint32_t b) { return bytes(items_[a].name) < bytes(items_[b].name); });
-    return out;
 }
 
 bool flat_json::parse(std::string_view text) {

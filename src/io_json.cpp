@@ -14,7 +14,8 @@
 namespace keyrot {
 namespace {
 
-using json = nlohmann::json;
+// Members in the document's order: tracks come out in input order.
+using json = nlohmann::ordered_json;
 
 /// Deeper nesting than this is refused before parsing, so that a hostile
 /// document cannot exhaust the parser's stack.

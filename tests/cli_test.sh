@@ -90,6 +90,15 @@ expect "huge rotation vector" 0 "time,qw,qx,qy,qz
 0,0.438371146789,0,0,0.898794046299" -- \
     bash -c "printf 'time,rx,ry,rz\n0,0,0,1e200\n' | '$keyrot' convert --from csv --rep quat --precision 12"
 
+# JSON tracks come out in the document's order (the spec's "in input order"),
+# also when a track name with an escape sends the document to nlohmann-json.
+for name in zeta 'z\u0065ta'; do
+    expect "JSON tracks in input order ($name)" 0 "track,time,qw,qx,qy,qz
+zeta,0,1,0,0,0
+alpha,0,0,0,0,1" -- \
+        bash -c "printf '%s' '{\"tracks\": {\"$name\": [{\"time\": 0, \"quat\": [1, 0, 0, 0]}], \"alpha\": [{\"time\": 0, \"quat\": [0, 0, 0, 1]}]}}' | '$keyrot' convert --from json --to csv --rep quat"
+done
+
 # --max-frames: 10 s at 24 fps is 241 frames.
 printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n10,0,0,0,1\n' > "$work/ten_seconds.csv"
 expect_error "over --max-frames" "keyrot: $work/ten_seconds.csv:3: keys from 0 s to 10 s make 241 frames at 24 fps: \

@@ -18,7 +18,7 @@ namespace {
 bool taken_as_nlohmann(flat_json& line, const std::string& text) {
     if (!line.parse(text)) return false;
     try {
-        return same_json(nlohmann::json::parse(text), line.root());
+        return same_json(nlohmann::ordered_json::parse(text), line.root());
     } catch (const nlohmann::json::exception&) {
         return false;  // flat_json took what nlohmann-json refuses
     }

@@ -13,7 +13,7 @@ namespace keyrot::test {
 /// The same value: type, number to the bit, string bytes, elements and
 /// members in the same order. Of a boolean, only the type (no reader asks
 /// more).
-inline bool same_json(const nlohmann::json& j, flat_json::value v) {
+inline bool same_json(const nlohmann::ordered_json& j, flat_json::value v) {
     if (std::string_view(j.type_name()) != v.type_name()) return false;
     if (v.is_number()) return std::bit_cast<std::uint64_t>(j.get<double>()) == std::bit_cast<std::uint64_t>(v.number());
     if (v.is_string()) return j.get_ref<const std::string&>() == v.string();
@@ -22,7 +22,7 @@ inline bool same_json(const nlohmann::json& j, flat_json::value v) {
     bool same = true;
     std::size_t i = 0;
     if (v.is_array()) v.elements([&](flat_json::value e) { same = same && same_json(j[i++], e); });
-    auto member = j.begin();  // nlohmann-json's std::map: by name
+    auto member = j.begin();
     if (v.is_object()) v.members([&](std::string_view name, flat_json::value e) {
         same = same && member.key() == name && same_json(member.value(), e);
         ++member;

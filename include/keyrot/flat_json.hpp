@@ -58,11 +58,11 @@ public:
         void elements(F&& f) const {
             for (std::uint32_t at = first(); at != 0; at = json_->items_[at].next) f(value{*json_, at});
         }
-        /// f(name, value) for each member of an object, by name (as
-        /// nlohmann-json's std::map holds them).
+        /// f(name, value) for each member of an object, in order.
         template <class F>
         void members(F&& f) const {
-            for (const std::uint32_t at : json_->by_name(index_)) f(json_->bytes(json_->items_[at].name), value{*json_, at});
+            for (std::uint32_t at = first(); at != 0; at = json_->items_[at].next)
+                f(json_->bytes(json_->items_[at].name), value{*json_, at});
         }
 
     private:
@@ -92,7 +92,6 @@ private:
     bool parse_literal(std::string_view word);
     void skip_space() noexcept;
     std::string_view bytes(span s) const noexcept { return {begin_ + s.at, s.size}; }
-    std::vector<std::uint32_t> by_name(std::uint32_t object) const;
 
     std::size_t max_values_;
     std::vector<item> items_;

@@ -26,7 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     keyrot::flat_json flat;
     if (flat.parse(text)) {
         try {
-            keyrot::fuzz::require(keyrot::test::same_json(nlohmann::json::parse(text), flat.root()));
+            keyrot::fuzz::require(keyrot::test::same_json(nlohmann::ordered_json::parse(text), flat.root()));
         } catch (const nlohmann::json::exception&) {
             std::abort();
         }
