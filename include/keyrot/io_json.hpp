@@ -9,9 +9,9 @@
 
 namespace keyrot {
 
-/// The whole document at once (memory about ten times its size). Throws
-/// input_error "<source>: tracks.hip.keys[3]: ..." for bad content,
-/// "<source>:<line>: ..." for malformed JSON.
+/// The whole document at once (memory about five times its size), tracks
+/// in its order. Throws input_error "<source>: tracks.hip.keys[3]: ..." for
+/// bad content, "<source>:<line>: ..." for malformed JSON.
 raw_document read_json(std::istream& in, const read_options& opts, warnings& warn);
 /// One line at a time. Throws input_error "<source>:<line>: ...".
 std::unique_ptr<key_reader> make_ndjson_reader(std::istream& in, const read_options& opts, warnings& warn);
