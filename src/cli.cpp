@@ -130,6 +130,7 @@ void define_slerp(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("Q1", o.q1, "second rotation")->required();
     sub.add_option("-t", o.ts, "interpolation parameter; may repeat");
     sub.add_option("--steps", o.steps, "sample t = 0, 1/N, ..., 1");
+    sub.add_option("--max-frames", o.max_frames, "most rows --steps may make (default 1e7)");
     sub.add_option("--from-rep", f.from_rep, "what Q0 and Q1 are: quat (in --quat-order), axis-angle "
                                              "(ax,ay,az,angle), rotvec, euler (needs --euler)")
         ->check(CLI::IsMember({"quat", "axis-angle", "rotvec", "euler"}));

@@ -56,6 +56,10 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     std::vector<double> ts = o.ts;
     if (o.steps) {
         if (*o.steps < 1) throw usage_error(fmt::format("--steps: expected at least 1, got {}", *o.steps));
+        // Rows are made in memory: a mistyped count must not take it all.
+        if (*o.steps + 1.0 > o.max_frames)
+            throw usage_error(fmt::format("--steps {} makes {} rows: expected at most {:g} (--max-frames N raises the limit)",
+                                          *o.steps, *o.steps + 1.0, o.max_frames));
         for (int i = 0; i <= *o.steps; ++i) ts.push_back(static_cast<double>(i) / *o.steps);
     }
     if (ts.empty()) throw usage_error("slerp needs -t T or --steps N");
