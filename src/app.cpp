@@ -1,5 +1,6 @@
 #include "keyrot/app.hpp"
 
+#include <new>
 #include <ostream>
 
 #include "commands.hpp"
@@ -45,11 +46,15 @@ resample_options resampling(const options& o) {
 
 input load(const options& o, const input_source& src, warnings& warn) {
     input result{src.source(), src.detect(o.from), false, {}};
-    const auto stream = src.open();
-    const raw_document doc = read_document(*stream, result.fmt, reading(o, src), warn);
-    result.named = doc.named;
-    result.tracks.reserve(doc.tracks.size());
-    for (const raw_track& raw : doc.tracks) result.tracks.push_back(make_track(raw, warn));
+    try {
+        const auto stream = src.open();
+        const raw_document doc = read_document(*stream, result.fmt, reading(o, src), warn);
+        result.named = doc.named;
+        result.tracks.reserve(doc.tracks.size());
+        for (const raw_track& raw : doc.tracks) result.tracks.push_back(make_track(raw, warn));
+    } catch (const std::bad_alloc&) {  // the input is held whole: a big one can be too big
+        throw error(src.source() + ": out of memory");
+    }
     return result;
 }
 

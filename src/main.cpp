@@ -3,6 +3,7 @@
 
 #include <csignal>
 #include <iostream>
+#include <new>
 
 #include "keyrot/app.hpp"
 #include "keyrot/cli.hpp"
@@ -19,6 +20,8 @@ int main(int argc, char** argv) {
         return keyrot::run(*opts, std::cin, std::cout, std::cerr);
     } catch (const keyrot::error& e) {
         keyrot::print_error(std::cerr, e.what());
+    } catch (const std::bad_alloc&) {
+        keyrot::print_error(std::cerr, "out of memory");
     } catch (const std::exception& e) {
         keyrot::print_error(std::cerr, std::string("internal error: ") + e.what());
     }

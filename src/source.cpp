@@ -80,7 +80,7 @@ bool write_all(int fd, const char* data, std::size_t size) {
 }  // namespace
 
 input_source::input_source(const std::string& name, std::istream& stdin_stream)
-    : name_(name), source_(name == "-" ? "<stdin>" : name) {
+    : name_(name), source_(source_name(name)) {
     if (name != "-") {
         fd_ = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
         if (fd_ < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));

@@ -9,6 +9,7 @@
 #include <exception>
 #include <filesystem>
 #include <mutex>
+#include <new>
 #include <ostream>
 #include <set>
 #include <sstream>
@@ -512,6 +513,9 @@ int transform_one(const options& o, const std::string& name, std::istream& in, s
         throw;
     } catch (const error& e) {
         print_error(err, e.what());
+        return 2;
+    } catch (const std::bad_alloc&) {  // e.g. a CSV line of gigabytes
+        print_error(err, source_name(name) + ": out of memory");
         return 2;
     }
 }

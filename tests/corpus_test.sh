@@ -179,6 +179,28 @@ expect_error "100 MB CSV line" "keyrot: long_line.csv:2: column 'qw': expected a
 { printf '{"keys": [{"time": 0, "quat": [1, 0, 0, 0], "note": "'; head -c 100000000 /dev/zero | tr '\0' 'x'; printf '"}, {"time": 1, "quat": [1, 0, 0]}]}'; } > long_line.json
 expect_error "100 MB JSON line" "keyrot: long_line.json: keys[1]: 'quat': expected an array of 4 numbers, got 3 elements" -- \
     "$keyrot" resample long_line.json
+
+# Out of memory (a JSON document is held whole, a CSV line too) is one clean
+# error naming the file; the target stays as it was, and in a batch the other
+# files are still written. Not under AddressSanitizer, which cannot start in
+# 200 MB of address space.
+if (ulimit -v 200000 && "$keyrot" --version) >/dev/null 2>&1; then
+    echo precious >"$work/kept.csv"
+    expect_error "out of memory" "keyrot: long_line.json: out of memory" -- \
+        bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" resample long_line.json -o "$work/kept.csv"
+    expect_error "out of memory, batch" "keyrot: long_line.json: out of memory" -- \
+        bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" resample long_line.json "$tests/../data/turntable.csv" --output-dir "$work/batch" --jobs 1
+    expect_error "out of memory, CSV line" "keyrot: long_line.csv: out of memory" -- \
+        bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" resample long_line.csv
+    expect_error "out of memory, info" "keyrot: long_line.json: out of memory" -- \
+        bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" info long_line.json
+    if [[ $(cat "$work/kept.csv") == precious && -s $work/batch/turntable.csv && ! -e $work/batch/long_line.json ]] &&
+        [[ -z $(find "$work" -name '*.keyrot-*') ]]; then
+        passed=$((passed + 1))
+    else
+        fail "out of memory: target changed, or the batch's other file missing: $(ls -A "$work" "$work/batch")"
+    fi
+fi
 rm -f long_line.csv long_line.json
 
 # Output safety: a directory as the target is one clean error and leaves no temporary file.

@@ -13,6 +13,9 @@
 
 namespace keyrot {
 
+/// How messages name the input `name`: the path, or "<stdin>" for "-".
+inline std::string source_name(const std::string& name) { return name == "-" ? "<stdin>" : name; }
+
 class input_source {
 public:
     /// `name` is a path or "-" (standard input, read from `stdin_stream`; in
