@@ -1,0 +1,266 @@
+#pragma once
+// Internal to resample and convert (src/transform.cpp): how output rows get
+// formatted, on other threads once there are many, and written out.
+#include <algorithm>
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "keyrot/error.hpp"
+#include "keyrot/io.hpp"
+#include "keyrot/output.hpp"
+
+namespace keyrot::detail {
+
+/// Where output text goes: -o FILE (a temporary file renamed on success) or
+/// a stream, in chunks of about a megabyte or in the batches formatting
+/// threads put out. Each is written by a second thread, started with the
+/// first chunk and kept to the end, while the next one fills.
+class chunked_output {
+public:
+    chunked_output(const std::optional<std::string>& path, std::ostream& out) : out_(out) {
+        if (path) file_.emplace(*path);
+        text_.reserve(chunk + chunk / 4);
+    }
+    chunked_output(const chunked_output&) = delete;
+    chunked_output& operator=(const chunked_output&) = delete;
+    ~chunked_output() {
+        if (!writer_.joinable()) return;
+        {
+            const std::lock_guard lock(mutex_);
+            stopping_ = true;
+            changed_.notify_all();
+        }
+        writer_.join();  // after a write under way (an error elsewhere): it ends before the file goes
+    }
+    std::string& text() noexcept { return text_; }
+    void maybe_flush() {
+        if (text_.size() >= chunk) put(text_);
+    }
+    /// Puts out `text` after text(), which it leaves empty, and gives it an
+    /// empty buffer in exchange: a batch formatted elsewhere is not copied.
+    /// One caller at a time.
+    void put(std::string& text) {
+        wait();
+        if (&text != &text_ && !text_.empty()) {
+            write(text_);
+            text_.clear();
+        }
+        std::swap(text, spare_);
+        text.clear();
+        if (!writer_.joinable()) writer_ = std::thread([this] { write_spares(); });
+        const std::lock_guard lock(mutex_);
+        spare_full_ = true;
+        changed_.notify_all();
+    }
+    void finish() {
+        wait();
+        write(text_);
+        if (file_) file_->commit();
+    }
+
+private:
+    static constexpr std::size_t chunk = std::size_t{1} << 20;
+    /// Until the writing thread is done with spare_; rethrows its error.
+    void wait() {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return !spare_full_; });
+        if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
+    }
+    void write_spares() {
+        std::unique_lock lock(mutex_);
+        for (;;) {
+            changed_.wait(lock, [this] { return spare_full_ || stopping_; });
+            if (!spare_full_) return;
+            lock.unlock();
+            std::exception_ptr failure;
+            try {
+                write(spare_);
+            } catch (...) {
+                failure = std::current_exception();
+            }
+            lock.lock();
+            failure_ = failure;
+            spare_full_ = false;
+            changed_.notify_all();
+        }
+    }
+    void write(const std::string& text) {
+        if (file_) {
+            file_->write(text);
+        } else {
+            out_.write(text.data(), static_cast<std::streamsize>(text.size()));
+            out_.flush();
+            if (!out_) throw error("cannot write to standard output");
+        }
+    }
+
+    std::ostream& out_;
+    std::optional<output_file> file_;
+    std::string text_, spare_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    bool spare_full_ = false, stopping_ = false;  // under mutex_
+    std::exception_ptr failure_;                  // under mutex_
+    std::thread writer_;
+};
+
+/// Rows are formatted on other threads once the output is large (for small
+/// ones starting threads costs more than it saves): the caller, reading and
+/// resampling, hands over batches of rows in order; a bounded queue keeps
+/// memory constant. Where rows stand alone (CSV, NDJSON) each thread formats
+/// whole batches with its own row_writer and the texts are put out in batch
+/// order; JSON rows go through the one writer, on one thread. Errors of the
+/// formatting threads come back from the next call, or from finish().
+class row_pipeline {
+public:
+    row_pipeline(table_writer& writer, chunked_output& out, unsigned threads)
+        : writer_(writer), out_(out), threads_(threads) {}
+    row_pipeline(const row_pipeline&) = delete;
+    row_pipeline& operator=(const row_pipeline&) = delete;
+    ~row_pipeline() {
+        stop();
+        for (auto& w : workers_) w->thread.join();
+    }
+    void begin_track(const std::string& name, bool translation) {
+        current_ = track_begin{batch_.rows.size(), name, translation};
+        if (workers_.empty()) return writer_.begin_track(name, translation);
+        batch_.begins.push_back(*current_);
+    }
+    void row(const sample& s) {
+        if (workers_.empty()) {
+            writer_.row(s);
+            out_.maybe_flush();
+            if (++inline_rows_ == inline_limit) start();
+            return;
+        }
+        batch_.rows.push_back(s);
+        if (batch_.rows.size() == batch_rows) hand_over();
+    }
+    void finish() {
+        if (workers_.empty()) return;
+        hand_over();
+        stop();
+        for (auto& w : workers_) w->thread.join();
+        workers_.clear();
+        if (failure_) std::rethrow_exception(failure_);
+    }
+
+private:
+    static constexpr std::size_t inline_limit = 4096, batch_rows = 4096, max_batches = 6;
+    struct track_begin {
+        std::size_t before_row;
+        std::string name;
+        bool translation;
+    };
+    struct batch {
+        std::size_t number = 0;
+        std::optional<track_begin> resumed;  // the track the rows before the first begin belong to
+        std::vector<sample> rows;
+        std::vector<track_begin> begins;
+    };
+    struct worker {
+        std::unique_ptr<table_writer> own;  // formats into text; none: the one writer, straight out
+        std::string text;
+        std::thread thread;
+    };
+
+    void start() {
+        for (unsigned i = 0; i < threads_; ++i) {
+            auto w = std::make_unique<worker>();
+            if (threads_ > 1) w->own = writer_.row_writer(w->text);
+            if (i > 0 && !w->own) break;
+            workers_.push_back(std::move(w));
+        }
+        batch_.rows.reserve(batch_rows);
+        if (current_) batch_.resumed = track_begin{0, current_->name, current_->translation};
+        for (auto& w : workers_) w->thread = std::thread([this, &w = *w] { consume(w); });
+    }
+    void hand_over() {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return queue_.size() < max_batches || failure_; });
+        if (failure_) std::rethrow_exception(failure_);
+        queue_.push_back(std::move(batch_));
+        batch_ = batch{};
+        batch_.number = ++batches_;
+        if (current_) batch_.resumed = track_begin{0, current_->name, current_->translation};
+        batch_.rows.reserve(batch_rows);
+        changed_.notify_all();
+    }
+    void stop() {
+        const std::lock_guard lock(mutex_);
+        done_ = true;
+        changed_.notify_all();
+    }
+    void consume(worker& w) {
+        try {
+            for (batch b; take(b);) {
+                format(b, w);
+                if (!w.own) continue;
+                {
+                    std::unique_lock lock(mutex_);
+                    changed_.wait(lock, [&] { return written_ == b.number || failure_; });
+                    if (failure_) return;
+                }
+                out_.put(w.text);  // this batch's turn: no other thread writes now
+                const std::lock_guard lock(mutex_);
+                ++written_;
+                changed_.notify_all();
+            }
+        } catch (...) {
+            const std::lock_guard lock(mutex_);
+            if (!failure_) failure_ = std::current_exception();
+            changed_.notify_all();
+        }
+    }
+    bool take(batch& b) {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [this] { return !queue_.empty() || done_ || failure_; });
+        if (queue_.empty() || failure_) return false;
+        b = std::move(queue_.front());
+        queue_.pop_front();
+        changed_.notify_all();
+        return true;
+    }
+    void format(const batch& b, worker& w) {
+        table_writer& writer = w.own ? *w.own : writer_;
+        if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->translation);
+        std::size_t next_begin = 0;
+        for (std::size_t i = 0; i <= b.rows.size(); ++i) {
+            for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
+                writer.begin_track(b.begins[next_begin].name, b.begins[next_begin].translation);
+            if (i == b.rows.size()) break;
+            writer.row(b.rows[i]);
+            if (!w.own) out_.maybe_flush();
+        }
+    }
+
+    table_writer& writer_;
+    chunked_output& out_;
+    unsigned threads_;
+    std::size_t inline_rows_ = 0;
+    batch batch_;
+    std::optional<track_begin> current_;
+    std::size_t batches_ = 0, written_ = 0;
+    std::deque<batch> queue_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    bool done_ = false;
+    std::exception_ptr failure_;
+    std::vector<std::unique_ptr<worker>> workers_;  // their threads start once everything else exists
+};
+
+/// Threads for formatting a large output: two keep up with one reading
+/// and resampling thread; more than four do not help.
+inline unsigned formatting_threads() { return std::clamp(std::thread::hardware_concurrency(), 2u, 4u); }
+
+}  // namespace keyrot::detail
