@@ -194,6 +194,8 @@ if (ulimit -v 200000 && "$keyrot" --version) >/dev/null 2>&1; then
         bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" resample long_line.csv
     expect_error "out of memory, info" "keyrot: long_line.json: out of memory" -- \
         bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" info long_line.json
+    expect_error "out of memory, slerp" "keyrot: out of memory" -- \
+        bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" slerp 1,0,0,0 0,0,0,1 --steps 9999999
     if [[ $(cat "$work/kept.csv") == precious && -s $work/batch/turntable.csv && ! -e $work/batch/long_line.json ]] &&
         [[ -z $(find "$work" -name '*.keyrot-*') ]]; then
         passed=$((passed + 1))
