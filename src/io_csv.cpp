@@ -134,11 +134,32 @@ bool empty_cell(const std::vector<std::string_view>& cells, std::size_t at) { re
 class csv_reader final : public key_reader {
 public:
     csv_reader(std::istream& in, const read_options& opts, warnings& warn) : lines_(in), source_(opts.source) {
+        // numpy.savetxt writes its header as a comment ("# time,qw,..."):
+        // the last comment before the first row is the header when it names
+        // a time column and the row does not.
+        std::string comment;
+        std::size_t comment_line = 0;
         std::string_view line;
         while (lines_.next(line)) {
-            if (skip(line)) continue;
+            if (skip(line)) {
+                const auto content = trim(line);
+                if (!content.empty()) comment = content.substr(1), comment_line = lines_.number();
+                continue;
+            }
+            if (comment_line != 0 && names_time(comment) && !names_time(line)) {
+                first_key_ = line;  // kept for next(): reading on reuses the line's memory
+                first_key_pending_ = true;
+                header_line_ = comment_line;
+                cols_ = parse_header(splitter_.split(comment, source_, comment_line),
+                                     fmt::format("{}:{}", source_, comment_line), warn);
+                return;
+            }
+            const auto& cells = splitter_.split(line, source_, lines_.number());
+            if (std::all_of(cells.begin(), cells.end(), [](auto c) { return parse_number(c).has_value(); }))
+                throw input_error(where_now(), "expected a header line naming the columns (time or frame, and "
+                                               "the rotation's), got a row of numbers");
             header_line_ = lines_.number();
-            cols_ = parse_header(splitter_.split(line, source_, header_line_), where_now(), warn);
+            cols_ = parse_header(cells, where_now(), warn);
             return;
         }
         throw input_error(source_, "empty input: expected a CSV header and keys");
@@ -149,9 +170,14 @@ public:
 
     bool next(std::string& track, raw_key& k) override {
         std::string_view line;
-        do {
-            if (!lines_.next(line)) return false;
-        } while (skip(line));
+        if (first_key_pending_) {
+            first_key_pending_ = false;
+            line = first_key_;
+        } else {
+            do {
+                if (!lines_.next(line)) return false;
+            } while (skip(line));
+        }
         const auto& cells = splitter_.split(line, source_, lines_.number());
         if (cells.size() != cols_.count)
             throw input_error(where_now(), fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
@@ -197,11 +223,24 @@ private:
                                                    trim(cells[at]).substr(0, 40)));
     }
 
+    /// Whether a line has a cell 'time' or 'frame' (any case, unquoted).
+    static bool names_time(std::string_view line) {
+        for (std::size_t start = 0; start <= line.size();) {
+            const std::size_t comma = std::min(line.find(',', start), line.size());
+            const std::string_view cell = trim(line.substr(start, comma - start));
+            if (cell.size() <= 5 && (ascii_lower(cell) == "time" || ascii_lower(cell) == "frame")) return true;
+            start = comma + 1;
+        }
+        return false;
+    }
+
     line_reader lines_;
     std::string source_;
     cell_splitter splitter_;
     columns cols_;
     std::size_t header_line_ = 0;
+    std::string first_key_;  // the first row under a commented header, read with it
+    bool first_key_pending_ = false;
 };
 
 }  // namespace
