@@ -74,7 +74,7 @@ columns parse_header(const std::vector<std::string_view>& cells, const std::stri
     std::map<std::string, std::size_t> index;
     for (std::size_t i = 0; i < cells.size(); ++i) {
         const std::string name = ascii_lower(trim(cells[i]));
-        if (name.empty()) throw input_error(where, fmt::format("column {} has no name: expected a column name", i + 1));
+        if (name.empty()) continue;  // pandas' to_csv writes its index so; ignored as unknown columns are
         if (!index.emplace(name, i).second)
             throw input_error(where, fmt::format("column '{}' appears twice: expected each column once", name));
     }
@@ -125,7 +125,9 @@ columns parse_header(const std::vector<std::string_view>& cells, const std::stri
         cols.translation = std::array<std::size_t, 3>{*tx, *ty, *tz};
     }
     for (std::size_t i = 0; i < cells.size(); ++i)
-        if (!known[i]) warn.once("column", fmt::format("ignoring unknown column '{}'", trim(cells[i])));
+        if (!known[i])
+            warn.once("column", trim(cells[i]).empty() ? fmt::format("ignoring unnamed column {}", i + 1)
+                                                       : fmt::format("ignoring unknown column '{}'", trim(cells[i])));
     return cols;
 }
 

@@ -104,12 +104,41 @@ TEST_CASE("CSV errors name the line and what was expected") {
           "in:1: columns of two rotation representations (quat and axis-angle): expected one");
     CHECK(error_of("time,qw,qx,qy\n", format::csv) == "in:1: missing column 'qz': quat needs qw qx qy qz");
     CHECK(error_of("time,qw,qx,qy,qw\n", format::csv) == "in:1: column 'qw' appears twice: expected each column once");
+    CHECK(error_of(",time,qw,qx,qy,qz,QW\n", format::csv) == "in:1: column 'qw' appears twice: expected each column once");
     CHECK(error_of("qw,qx,qy,qz\n", format::csv) == "in:1: no time column: expected a 'time' or 'frame' column");
     CHECK(error_of("time,foo\n", format::csv).find("in:1: no rotation columns") == 0);
     CHECK(error_of("", format::csv) == "in: empty input: expected a CSV header and keys");
     CHECK(error_of("# c\ntime,qw,qx,qy,qz\n", format::csv) == "in:2: no keys: expected at least one key");
     CHECK(error_of("time,rx,ry,rz,tx,ty,tz\n0,0,0,0,1,,\n", format::csv).find("in:2: columns tx ty tz") == 0);
     CHECK(error_of("track,time,rx,ry,rz\n\xFF,0,0,0,0\n", format::csv) == "in:2: invalid UTF-8: expected text");
+}
+
+TEST_CASE("CSV: numpy.savetxt's commented header, pandas' unnamed index column") {
+    // np.savetxt(f, rows, delimiter=",", header="time,qw,qx,qy,qz")
+    const auto doc = read("# time,qw,qx,qy,qz\n0.000000000000000000e+00,1,0,0,0\n5.0e-01,0,0,0,1\n", format::csv);
+    REQUIRE(doc.tracks.size() == 1);
+    const auto& k = doc.tracks[0].keys;
+    REQUIRE(k.size() == 2);
+    CHECK(k[0].at.line == 2);
+    CHECK(k[0].values[0] == 1);
+    CHECK(*k[1].time == 0.5);
+    CHECK(k[1].values[3] == 1);
+    CHECK(error_of("# time,qw,qx,qy,qz\n0,half,0,0,0\n", format::csv) ==
+          "in:2: column 'qw': expected a finite number, got 'half'");
+    CHECK(error_of("# time,qw\n0,1\n", format::csv) == "in:1: missing column 'qx': quat needs qw qx qy qz");
+    CHECK(error_of("# exported by hand\n0,1,0,0,0\n", format::csv) ==
+          "in:2: expected a header line naming the columns (time or frame, and the rotation's), got a row of numbers");
+    // A header row after the comment is the header, as it always was.
+    CHECK(read("# time,qw,qx,qy,qz\nframe,qw,qx,qy,qz\n3,1,0,0,0\n", format::csv).tracks[0].keys[0].frame == 3);
+
+    // df.to_csv(f): the index first, under an empty name
+    std::ostringstream err;
+    warnings warn(err, "in");
+    read_options o;
+    o.source = "in";
+    const auto pandas = read_document(",time,qw,qx,qy,qz,\n0,0.0,1.0,0.0,0.0,0.0,\n", format::csv, o, warn);
+    CHECK(pandas.tracks[0].keys[0].values[0] == 1);
+    CHECK(err.str() == "keyrot: warning: in: ignoring unnamed column 1\n");
 }
 
 TEST_CASE("JSON: keys, tracks, quaternion order and objects, document fields") {
