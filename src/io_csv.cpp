@@ -69,6 +69,9 @@ std::string column_list(rep r) {
 }
 
 columns parse_header(const std::vector<std::string_view>& cells, const std::string& where, warnings& warn) {
+    if (cells.size() == 1 && trim(cells[0]).find_first_of(" \t;") != std::string_view::npos)
+        throw input_error(where, fmt::format("expected commas between the columns, got '{}'",
+                                             trim(cells[0]).substr(0, 40)));
     columns cols;
     cols.count = cells.size();
     std::map<std::string, std::size_t> index;

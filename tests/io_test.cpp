@@ -106,6 +106,8 @@ TEST_CASE("CSV errors name the line and what was expected") {
     CHECK(error_of("time,qw,qx,qy,qw\n", format::csv) == "in:1: column 'qw' appears twice: expected each column once");
     CHECK(error_of(",time,qw,qx,qy,qz,QW\n", format::csv) == "in:1: column 'qw' appears twice: expected each column once");
     CHECK(error_of("qw,qx,qy,qz\n", format::csv) == "in:1: no time column: expected a 'time' or 'frame' column");
+    CHECK(error_of("time\tqw\tqx\tqy\tqz\n", format::csv) ==
+          "in:1: expected commas between the columns, got 'time\tqw\tqx\tqy\tqz'");
     CHECK(error_of("time,foo\n", format::csv).find("in:1: no rotation columns") == 0);
     CHECK(error_of("", format::csv) == "in: empty input: expected a CSV header and keys");
     CHECK(error_of("# c\ntime,qw,qx,qy,qz\n", format::csv) == "in:2: no keys: expected at least one key");
