@@ -143,15 +143,17 @@ public:
         // the last comment before the first row is the header when it names
         // a time column and the row does not.
         std::string comment;
-        std::size_t comment_line = 0;
+        std::size_t comment_line = 0;  // 0: the last comment (if any) names no time column
         std::string_view line;
         while (lines_.next(line)) {
             if (skip(line)) {
                 const auto content = trim(line);
-                if (!content.empty()) comment = content.substr(1), comment_line = lines_.number();
+                if (content.empty()) continue;  // a blank line
+                comment_line = names_time(content.substr(1)) ? lines_.number() : 0;
+                if (comment_line != 0) comment = content.substr(1);
                 continue;
             }
-            if (comment_line != 0 && names_time(comment) && !names_time(line)) {
+            if (comment_line != 0 && !names_time(line)) {
                 first_key_ = line;  // kept for next(): reading on reuses the line's memory
                 first_key_pending_ = true;
                 header_line_ = comment_line;

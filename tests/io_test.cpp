@@ -130,6 +130,8 @@ TEST_CASE("CSV: numpy.savetxt's commented header, pandas' unnamed index column")
     CHECK(error_of("# time,qw\n0,1\n", format::csv) == "in:1: missing column 'qx': quat needs qw qx qy qz");
     CHECK(error_of("# exported by hand\n0,1,0,0,0\n", format::csv) ==
           "in:2: expected a header line naming the columns (time or frame, and the rotation's), got a row of numbers");
+    const std::string last_comment = "# time,qw,qx,qy,qz\n# exported by hand\n0,1,0,0,0\n";  // the one that counts
+    CHECK(error_of(last_comment, format::csv).find("in:3: expected a header line") == 0);
     // A header row after the comment is the header, as it always was.
     CHECK(read("# time,qw,qx,qy,qz\nframe,qw,qx,qy,qz\n3,1,0,0,0\n", format::csv).tracks[0].keys[0].frame == 3);
 
