@@ -152,6 +152,25 @@ void write_sixteen(char* out, std::uint64_t v) noexcept {
 #endif
 }
 
+constexpr std::uint64_t powers_of_ten[18] = {1,
+                                             10,
+                                             100,
+                                             1000,
+                                             10000,
+                                             100000,
+                                             1000000,
+                                             10000000,
+                                             100000000,
+                                             1000000000,
+                                             10000000000,
+                                             100000000000,
+                                             1000000000000,
+                                             10000000000000,
+                                             100000000000000,
+                                             1000000000000000,
+                                             10000000000000000,
+                                             100000000000000000};
+
 /// The decimal digits of a significand (at most 17 of them, as Dragonbox
 /// gives for a double), written as 17 with leading zeros and copied in
 /// fixed-size blocks: no loop or call depends on the digit count.
@@ -171,24 +190,6 @@ public:
     }
 
 private:
-    static constexpr std::uint64_t powers_of_ten[18] = {1,
-                                                        10,
-                                                        100,
-                                                        1000,
-                                                        10000,
-                                                        100000,
-                                                        1000000,
-                                                        10000000,
-                                                        100000000,
-                                                        1000000000,
-                                                        10000000000,
-                                                        100000000000,
-                                                        1000000000000,
-                                                        10000000000000,
-                                                        100000000000000,
-                                                        1000000000000000,
-                                                        10000000000000000,
-                                                        100000000000000000};
     char digits_[17 + 17];  // the copies may read past the digits
     int count_;
 };
@@ -199,6 +200,22 @@ char* write_integer(char* out, std::int64_t v) noexcept {
     const significand_digits digits(static_cast<std::uint64_t>(v < 0 ? -v : v));
     digits.copy(out);
     return out + digits.count();
+}
+
+/// The digits with `point` of them before the decimal point (fewer than all
+/// of them, and -point <= 16): dd.ddd or 0.000ddd. `out` needs 36 bytes of
+/// room.
+char* write_with_point(char* out, const significand_digits& digits, int point) noexcept {
+    if (point > 0) {  // dd.ddd
+        digits.copy(out);
+        out[point] = '.';
+        digits.copy(out + point + 1, point);
+        return out + digits.count() + 1;
+    }
+    out[0] = '0', out[1] = '.';  // 0.000ddd
+    std::memset(out + 2, '0', 16);
+    digits.copy(out + 2 - point);
+    return out + 2 - point + digits.count();
 }
 
 /// The shortest digits that read back to v (Dragonbox, the algorithm fmt's
@@ -230,16 +247,40 @@ char* write_shortest(char* out, double v) noexcept {
         std::memset(out + count, '0', static_cast<std::size_t>(decimal.exponent));
         return out + point;
     }
-    if (point > 0) {  // dd.ddd
-        digits.copy(out);
-        out[point] = '.';
-        digits.copy(out + point + 1, point);
-        return out + count + 1;
+    return write_with_point(out, digits, point);
+}
+
+/// v rounded to `decimals` digits after the point (ties to even, on the
+/// exact binary value), trailing zeros dropped, as fmt's "{:.Nf}" and
+/// printf's "%.Nf" round. Exact in integers: v = m 2^-k, so v 10^N rounds to
+/// the quotient of m 10^N (< 2^110) by 2^k. Returns nullptr when the rounded
+/// number could have more than 17 digits (v 10^N >= 10^17 - 1, or v >= 2^52),
+/// for fmt to write: slower, as its fixed notation falls back to big
+/// integers for many numbers. `out` needs 40 bytes of room.
+char* write_fixed(char* out, double v, int decimals) noexcept {
+    __extension__ using uint128 = unsigned __int128;
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    const int biased = static_cast<int>(bits >> 52 & 0x7ff);
+    const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
+    const std::uint64_t m = biased == 0 ? fraction : fraction | std::uint64_t{1} << 52;
+    const int k = biased == 0 ? 1074 : 1075 - biased;  // v = m 2^-k
+    if (k <= 0) return nullptr;
+    std::uint64_t q = 0;
+    if (k < 111) {  // else m 10^N < 2^110 < half of 2^k: rounds to 0
+        const uint128 scaled = uint128{m} * powers_of_ten[decimals];
+        const uint128 whole = scaled >> k;
+        if (whole >= powers_of_ten[17] - 1) return nullptr;  // so that rounding up stays below 10^17
+        q = static_cast<std::uint64_t>(whole);
+        const uint128 rest = scaled - (whole << k), half = uint128{1} << (k - 1);
+        if (rest > half || (rest == half && (q & 1) != 0)) ++q;
     }
-    out[0] = '0', out[1] = '.';  // 0.000ddd
-    std::memset(out + 2, '0', 8);   // -point <= 4
-    digits.copy(out + 2 - point);
-    return out + 2 - point + count;
+    if (q == 0) return *out = '0', out + 1;  // never -0
+    while (decimals > 0 && q % 10 == 0) q /= 10, --decimals;
+    const auto whole_number = static_cast<std::int64_t>(q);
+    if (decimals == 0) return write_integer(out, v < 0 ? -whole_number : whole_number);
+    if (v < 0) *out++ = '-';
+    const significand_digits digits(q);
+    return write_with_point(out, digits, digits.count() - decimals);
 }
 
 }  // namespace
@@ -257,6 +298,7 @@ char* write_number(char* out, double v, std::optional<int> precision) {
         }
         return write_shortest(out, v);
     }
+    if (char* end = write_fixed(out, v, *precision)) return end;
     char* const begin = out;
     char* end = fmt::format_to(out, FMT_COMPILE("{:.{}f}"), v, *precision);
     if (std::find(begin, end, '.') != end) {

@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <numbers>
 #include <random>
@@ -77,6 +78,56 @@ TEST_CASE("--precision rounds and drops trailing zeros, never -0") {
     CHECK(longest.size() == 1 + 309);
     CHECK(longest.size() <= max_number_chars);
     CHECK(std::stod(longest) == -1.7976931348623157e308);
+}
+
+TEST_CASE("--precision rounds exactly as printf's \"%.Nf\" and fmt's \"{:.Nf}\"") {
+    // keyrot rounds in integers; glibc's printf (exact, ties to even in the
+    // default rounding mode) and fmt are two independent references.
+    const auto without_trailing_zeros = [](std::string s) {
+        if (s.find('.') != std::string::npos) {
+            while (s.back() == '0') s.pop_back();
+            if (s.back() == '.') s.pop_back();
+        }
+        return s == "-0" ? std::string("0") : s;
+    };
+    const auto same = [&](double v, int decimals) {
+        CAPTURE(v);
+        CAPTURE(decimals);
+        char buf[400];
+        const int size = std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+        const std::string ours = number(v, decimals);
+        REQUIRE(ours == without_trailing_zeros(std::string(buf, static_cast<std::size_t>(size))));
+        REQUIRE(ours == without_trailing_zeros(fmt::format("{:.{}f}", v, decimals)));
+    };
+    std::mt19937_64 gen(12);
+    std::uniform_int_distribution<std::uint64_t> bits;
+    for (int decimals = 0; decimals <= 17; ++decimals) {
+        for (double v : {0.0, 1.0, 0.1, 1e17, 9.5e16, 99999999999999990.0, 4503599627370495.5, 4503599627370496.0,
+                         9007199254740993.0, 1e-18, 5e-18, 1e-300, 5e-324, 2.2250738585072014e-308,
+                         1.7976931348623157e308})
+            for (double s : {v, -v}) same(s, decimals);
+        // Exact ties at this place (odd multiples of 2^-(N+1): to even) and their neighbours.
+        for (int i = 0; i < 2000; ++i) {
+            const double tie = std::ldexp(static_cast<double>(bits(gen) >> (11 + i % 53) | 1), -(decimals + 1));
+            for (double v : {tie, -tie, std::nextafter(tie, 0.0), std::nextafter(tie, 1e300)}) same(v, decimals);
+        }
+        // Rounding up to the next power of ten, at every decimal place.
+        for (int e = -17; e <= 18; ++e) {
+            const double nines = std::pow(10.0, e) - std::pow(10.0, -decimals) / 2;
+            for (double v : {nines, std::nextafter(nines, 0.0), std::nextafter(nines, 1e300)}) same(v, decimals);
+        }
+    }
+    std::uniform_int_distribution<int> any_decimals(0, 17);
+    std::uniform_real_distribution<double> unit(-1, 1), exponent(-20, 20);
+    for (int i = 0; i < 100000; ++i) {
+        const int decimals = any_decimals(gen);
+        const double any = std::bit_cast<double>(bits(gen));  // every binary exponent
+        if (std::isfinite(any)) same(any, decimals);
+        same(unit(gen), decimals);                                  // quaternion and axis components
+        same(unit(gen) * 360, decimals);                            // angles
+        same(unit(gen) * std::pow(10.0, exponent(gen)), decimals);  // every decimal layout
+        same(static_cast<double>(i) / 24, decimals);                // frame times
+    }
 }
 
 TEST_CASE("CSV columns per representation and quaternion order") {
