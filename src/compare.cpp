@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "keyrot/convert.hpp"
 #include "keyrot/tolerances.hpp"
@@ -17,15 +18,51 @@ const track* find_track(const std::vector<track>& tracks, const std::string& nam
     return nullptr;
 }
 
-/// The key of `t` that matches `k`, by frame if both have one, else by time.
-std::optional<std::size_t> match(const track& t, const key& k) {
-    for (std::size_t i = 0; i < t.keys.size(); ++i) {
-        const key& other = t.keys[i];
-        if (k.frame && other.frame ? *k.frame == *other.frame : std::fabs(k.time - other.time) <= tol::match_time)
-            return i;
+/// Finds the key of a track that matches another key: the first by frame if
+/// both have one, else by time (|dt| <= tol::match_time). Binary searches of
+/// the frames (sorted, ties by position) and of the times (which increase
+/// strictly within a track) make that O(log n) rather than a scan, so that
+/// long tracks compare in n log n.
+class key_finder {
+public:
+    explicit key_finder(const track& t) : keys_(t.keys) {
+        for (std::size_t i = 0; i < keys_.size(); ++i) {
+            if (keys_[i].frame) frames_.emplace_back(*keys_[i].frame, i);
+            else without_frame_.push_back(i);
+        }
+        std::sort(frames_.begin(), frames_.end());
     }
-    return std::nullopt;
-}
+
+    std::optional<std::size_t> find(const key& k) const {
+        // Among keys in increasing time, those too early form a prefix, as
+        // k.time - other.time only falls as other.time grows: the first key
+        // after it is the one candidate.
+        const auto too_early = [&k](const key& other) {
+            return other.time < k.time && k.time - other.time > tol::match_time;
+        };
+        const auto if_near = [&](std::size_t i) -> std::optional<std::size_t> {
+            if (std::fabs(k.time - keys_[i].time) <= tol::match_time) return i;
+            return std::nullopt;
+        };
+        if (!k.frame) {
+            const auto it = std::partition_point(keys_.begin(), keys_.end(), too_early);
+            if (it == keys_.end()) return std::nullopt;
+            return if_near(static_cast<std::size_t>(it - keys_.begin()));
+        }
+        const auto unframed = std::partition_point(without_frame_.begin(), without_frame_.end(),
+                                                   [&](std::size_t i) { return too_early(keys_[i]); });
+        std::optional<std::size_t> found = unframed == without_frame_.end() ? std::nullopt : if_near(*unframed);
+        const auto framed = std::lower_bound(frames_.begin(), frames_.end(), std::pair(*k.frame, std::size_t{0}));
+        if (framed != frames_.end() && framed->first == *k.frame)
+            found = std::min(found.value_or(framed->second), framed->second);
+        return found;
+    }
+
+private:
+    const std::vector<key>& keys_;
+    std::vector<std::pair<double, std::size_t>> frames_;  ///< (frame, index) of the keys that have one
+    std::vector<std::size_t> without_frame_;
+};
 
 row_difference unmatched(const track& t, const key& k, const char* problem) {
     return {t.name, k.frame, k.time, std::nullopt, std::nullopt, problem};
@@ -40,8 +77,9 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
 
     for (const track& e : expected) {
         const track* a = find_track(actual, e.name);
+        const std::optional<key_finder> finder = a ? std::optional<key_finder>(*a) : std::nullopt;
         for (const key& k : e.keys) {
-            const auto j = a ? match(*a, k) : std::nullopt;
+            const auto j = finder ? finder->find(k) : std::nullopt;
             if (!j) {
                 out.rows.push_back(unmatched(e, k, "missing from ACTUAL"));
                 continue;

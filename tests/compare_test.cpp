@@ -2,8 +2,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "helpers.hpp"
 
@@ -69,4 +71,53 @@ TEST_CASE("tracks are matched by name; translations are checked when expected") 
     CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {at(0, quat{})})}, {}).rows[0].problem ==
           "translation missing from ACTUAL");
     CHECK(compare_tracks({named("hip", {with_t})}, {named("knee", {with_t})}, {}).failed == 2);
+}
+
+TEST_CASE("each key matches the first key a scan of ACTUAL would find") {
+    // The reference is the plain scan: the first key of ACTUAL with the same
+    // frame when both have one, else within 1e-6 s. Times 0.4 to 3 us apart
+    // and small frame numbers make near misses, exact 1e-6 steps and
+    // repeated frames common; each ACTUAL key has its own angle, so a row's
+    // angle tells which key it matched.
+    const auto scan = [](const std::vector<key>& keys, const key& k) -> std::optional<std::size_t> {
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            const key& other = keys[i];
+            if (k.frame && other.frame ? *k.frame == *other.frame : std::fabs(k.time - other.time) <= 1e-6) return i;
+        }
+        return std::nullopt;
+    };
+    std::mt19937 gen(7);
+    std::uniform_int_distribution<int> step(0, 3), frame(0, 40), coin(0, 1);
+    const auto random_keys = [&](bool distinct_angles) {
+        std::vector<key> keys;
+        double time = 0;
+        for (int i = 0; i < 80; ++i) {
+            const int s = step(gen);
+            time += s == 0 ? 0.4e-6 : s * 1e-6;
+            const quat q = distinct_angles ? exp(vec3{0, 0, 1e-3 * (i + 1)}) : quat{};
+            keys.push_back(at(time, q, coin(gen) ? std::optional<double>(frame(gen)) : std::nullopt));
+        }
+        return keys;
+    };
+    std::size_t matched = 0, unmatched_rows = 0;
+    for (int round = 0; round < 300; ++round) {
+        const std::vector<key> expected = random_keys(false), actual = random_keys(true);
+        const auto c = compare_tracks({named("", expected)}, {named("", actual)}, {1e9, 1});
+        std::vector<bool> used(actual.size());
+        for (std::size_t i = 0; i < expected.size(); ++i) {
+            CAPTURE(round);
+            CAPTURE(i);
+            const auto j = scan(actual, expected[i]);
+            REQUIRE(c.rows[i].angle_deg.has_value() == j.has_value());
+            if (!j) continue;
+            used[*j] = true;
+            ++matched;
+            CHECK(*c.rows[i].angle_deg == from_radians(geodesic_angle(quat{}, actual[*j].rotation), angle_unit::degrees));
+        }
+        const auto only_in_actual = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
+        CHECK(c.rows.size() == expected.size() + only_in_actual);
+        unmatched_rows += c.rows.size() - expected.size();
+    }
+    CHECK(matched > 1000);  // the cases are not all misses
+    CHECK(unmatched_rows > 1000);
 }
