@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string_view>
+#include <unordered_map>
 #include <utility>
 
 #include "keyrot/convert.hpp"
@@ -11,12 +13,6 @@
 
 namespace keyrot {
 namespace {
-
-const track* find_track(const std::vector<track>& tracks, const std::string& name) {
-    for (const track& t : tracks)
-        if (t.name == name) return &t;
-    return nullptr;
-}
 
 /// Finds the key of a track that matches another key: the first by frame if
 /// both have one, else by time (|dt| <= tol::match_time). Binary searches of
@@ -73,10 +69,15 @@ row_difference unmatched(const track& t, const key& k, const char* problem) {
 comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual, const tolerances& tol) {
     comparison out;
     std::vector<std::vector<bool>> used(actual.size());
-    for (std::size_t i = 0; i < actual.size(); ++i) used[i].assign(actual[i].keys.size(), false);
+    std::unordered_map<std::string_view, const track*> by_name;  // (names are unique within a file)
+    for (std::size_t i = 0; i < actual.size(); ++i) {
+        used[i].assign(actual[i].keys.size(), false);
+        by_name.emplace(actual[i].name, &actual[i]);
+    }
 
     for (const track& e : expected) {
-        const track* a = find_track(actual, e.name);
+        const auto named = by_name.find(e.name);
+        const track* a = named == by_name.end() ? nullptr : named->second;
         const std::optional<key_finder> finder = a ? std::optional<key_finder>(*a) : std::nullopt;
         for (const key& k : e.keys) {
             const auto j = finder ? finder->find(k) : std::nullopt;

@@ -71,6 +71,11 @@ TEST_CASE("tracks are matched by name; translations are checked when expected") 
     CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {at(0, quat{})})}, {}).rows[0].problem ==
           "translation missing from ACTUAL");
     CHECK(compare_tracks({named("hip", {with_t})}, {named("knee", {with_t})}, {}).failed == 2);
+    const quat turned = exp(vec3{0, 0, 0.5});
+    const auto reordered = compare_tracks({named("hip", {with_t}), named("knee", {at(0, turned)})},
+                                          {named("knee", {at(0, turned)}), named("hip", {with_t})}, {});
+    CHECK(reordered.failed == 0);
+    CHECK(reordered.rows.size() == 2);
 }
 
 TEST_CASE("each key matches the first key a scan of ACTUAL would find") {
