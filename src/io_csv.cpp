@@ -300,34 +300,31 @@ public:
 
     void row(const sample& s) override {
         if (info_.named) append_cell_text(out_, name_), out_ += ',';
-        // The numbers go into one buffer, appended at once: this is the hot
-        // path of resample.
-        char buf[max_row_numbers * (max_number_chars + 1)];
-        char* end = buf;
-        const auto number = [&](double v, std::optional<int> precision) {
-            end = write_number(end, v, precision);
-            *end++ = ',';
+        row_text text(out_);
+        bool first = true;
+        const auto cell = [&](double v, std::optional<int> precision) {
+            if (!first) text.put(',');
+            first = false;
+            text.number(v, precision);
         };
-        if (frame_) number(*s.frame, std::nullopt);
-        if (time_) number(s.time, opts_.precision);
+        if (frame_) cell(*s.frame, std::nullopt);
+        if (time_) cell(s.time, opts_.precision);
         const rotation_values r = row_values(s, opts_, warn_);
-        for (std::size_t i = 0; i < r.size; ++i) number(r.v[i], opts_.precision);
+        for (std::size_t i = 0; i < r.size; ++i) cell(r.v[i], opts_.precision);
         if (translation_) {
             if (s.translation) {
-                for (double t : {s.translation->x, s.translation->y, s.translation->z}) number(t, opts_.precision);
+                for (double t : {s.translation->x, s.translation->y, s.translation->z}) cell(t, opts_.precision);
             } else {
-                end = std::copy_n(",,,", 3, end);
+                text.put(",,,");
             }
         }
-        end[-1] = '\n';  // in place of the last comma
-        out_.append(buf, static_cast<std::size_t>(end - buf));  // (pointer, length): not the iterator overload
+        text.put('\n');
+        text.flush();
     }
 
     void finish() override {}
 
 private:
-    static constexpr std::size_t max_row_numbers = 2 + 16 + 3;  // frame, time, matrix4, translation
-
     std::string& out_;
     table_info info_;
     write_options opts_;

@@ -419,20 +419,23 @@ public:
 
     void row(const sample& s) override {
         if (!lines_) out_ += rows_++ ? ",\n" : "\n";
-        out_ += '{';
-        if (lines_ && info_.named) fmt::format_to(std::back_inserter(out_), "\"track\": {}, ", name_);
+        row_text text(out_);
+        text.put('{');
+        if (lines_ && info_.named) text.put("\"track\": "), text.put(name_), text.put(", ");
         const bool with_frame = s.frame && info_.times != time_columns::time_only;
-        if (with_frame) out_ += "\"frame\": ", append_number(out_, *s.frame, std::nullopt);
+        if (with_frame) text.put("\"frame\": "), text.number(*s.frame, std::nullopt);
         if (!with_frame || s.has_time) {
-            fmt::format_to(std::back_inserter(out_), "{}\"{}\": ", with_frame ? ", " : "", info_.time_name);
-            append_number(out_, s.time, opts_.precision);
+            if (with_frame) text.put(", ");
+            text.put('"'), text.put(info_.time_name), text.put("\": ");
+            text.number(s.time, opts_.precision);
         }
-        write_rotation(row_values(s, opts_, warn_));
+        write_rotation(text, row_values(s, opts_, warn_));
         if (translation_ && s.translation) {
-            out_ += ", \"translation\": ";
-            array({s.translation->x, s.translation->y, s.translation->z});
+            text.put(", \"translation\": ");
+            array(text, {s.translation->x, s.translation->y, s.translation->z});
         }
-        out_ += lines_ ? "}\n" : "}";
+        text.put(lines_ ? "}\n" : "}");
+        text.flush();
     }
 
     void finish() override {
@@ -442,35 +445,35 @@ public:
     }
 
 private:
-    void array(std::initializer_list<double> v) { array(std::data(v), v.size()); }
-    void array(const double* v, std::size_t n) {
-        out_ += '[';
+    void array(row_text& text, std::initializer_list<double> v) { array(text, std::data(v), v.size()); }
+    void array(row_text& text, const double* v, std::size_t n) {
+        text.put('[');
         for (std::size_t i = 0; i < n; ++i) {
-            if (i) out_ += ", ";
-            append_number(out_, v[i], opts_.precision);
+            if (i) text.put(", ");
+            text.number(v[i], opts_.precision);
         }
-        out_ += ']';
+        text.put(']');
     }
 
-    void write_rotation(const rotation_values& r) {
+    void write_rotation(row_text& text, const rotation_values& r) {
         const double* v = r.v.data();
         switch (opts_.representation) {
-            case rep::quat: out_ += ", \"quat\": ", array(v, 4); break;
+            case rep::quat: text.put(", \"quat\": "), array(text, v, 4); break;
             case rep::axis_angle:
-                out_ += ", \"axis\": ", array(v, 3);
-                out_ += ", \"angle\": ", append_number(out_, v[3], opts_.precision);
+                text.put(", \"axis\": "), array(text, v, 3);
+                text.put(", \"angle\": "), text.number(v[3], opts_.precision);
                 break;
-            case rep::rotvec: out_ += ", \"rotvec\": ", array(v, 3); break;
-            case rep::euler: out_ += ", \"euler\": ", array(v, 3); break;
+            case rep::rotvec: text.put(", \"rotvec\": "), array(text, v, 3); break;
+            case rep::euler: text.put(", \"euler\": "), array(text, v, 3); break;
             case rep::matrix:
             case rep::matrix4: {
                 const std::size_t n = opts_.representation == rep::matrix ? 3 : 4;
-                out_ += ", \"matrix\": [";
+                text.put(", \"matrix\": [");
                 for (std::size_t i = 0; i < n; ++i) {
-                    if (i) out_ += ", ";
-                    array(v + i * n, n);
+                    if (i) text.put(", ");
+                    array(text, v + i * n, n);
                 }
-                out_ += ']';
+                text.put(']');
                 break;
             }
         }

@@ -130,6 +130,29 @@ TEST_CASE("--precision rounds exactly as printf's \"%.Nf\" and fmt's \"{:.Nf}\""
     }
 }
 
+TEST_CASE("row_text appends everything it is given, in order, past its buffer") {
+    std::string out = "before;", expected = "before;";
+    row_text text(out);
+    const auto put = [&](std::string_view s) { text.put(s), expected += s; };
+    const auto put_number = [&](double v, std::optional<int> precision) {
+        text.number(v, precision), expected += number(v, precision);
+    };
+    const std::string name(5000, 'n');  // up to longer than the buffer
+    std::mt19937_64 gen(3);
+    std::uniform_int_distribution<int> what(0, 3);
+    for (int i = 0; i < 400; ++i) {
+        switch (what(gen)) {
+            case 0: text.put(','), expected += ','; break;
+            case 1: put(std::string_view(name).substr(0, static_cast<std::size_t>(i) * 13)); break;
+            case 2: put_number(-1.7976931348623157e308, 17); break;  // 310 characters
+            default: put_number(i / 24.0, std::nullopt); break;
+        }
+    }
+    text.flush();
+    CHECK(out.size() > 50 * 4096);
+    CHECK(out == expected);
+}
+
 TEST_CASE("CSV columns per representation and quaternion order") {
     const auto q = rotation_columns(rep::quat, quat_order::xyzw);
     CHECK(std::vector<std::string_view>(q.begin(), q.end()) == std::vector<std::string_view>{"qx", "qy", "qz", "qw"});

@@ -2,6 +2,7 @@
 // How rotations are laid out in files, shared by every reader and writer:
 // quaternion order, the CSV columns of each representation, the values
 // written for a rotation, and how numbers are printed.
+#include <algorithm>
 #include <array>
 #include <charconv>
 #include <cmath>
@@ -54,6 +55,43 @@ char* write_number(char* out, double v, std::optional<int> precision);
 inline constexpr std::size_t max_number_chars = 330;  // "{:.17f}" of -1.8e308 has 327
 /// write_number, appended to `out`.
 void append_number(std::string& out, double v, std::optional<int> precision);
+
+/// The text of an output row, gathered on the stack and appended to `out`
+/// in large pieces: appending to a std::string piece by piece costs more
+/// than printing the numbers. Call flush() at the end of the row.
+class row_text {
+public:
+    explicit row_text(std::string& out) noexcept : out_(out) {}
+    row_text(const row_text&) = delete;
+    row_text& operator=(const row_text&) = delete;
+
+    void put(char c) {
+        if (end_ == std::end(buf_)) flush();
+        *end_++ = c;
+    }
+    void put(std::string_view text) {
+        if (text.size() > room()) {
+            flush();
+            if (text.size() > room()) return (void)out_.append(text);
+        }
+        end_ = std::copy(text.begin(), text.end(), end_);
+    }
+    void number(double v, std::optional<int> precision) {
+        if (room() < max_number_chars) flush();
+        end_ = write_number(end_, v, precision);
+    }
+    void flush() {
+        out_.append(buf_, static_cast<std::size_t>(end_ - buf_));  // (pointer, length): not the iterator overload
+        end_ = buf_;
+    }
+
+private:
+    std::size_t room() const noexcept { return static_cast<std::size_t>(std::end(buf_) - end_); }
+
+    std::string& out_;
+    char buf_[4096];
+    char* end_ = buf_;
+};
 
 /// True if `text` is well-formed UTF-8 (no overlong forms, no surrogates).
 bool is_valid_utf8(std::string_view text) noexcept;
