@@ -193,7 +193,12 @@ private:
         batch_ = batch{};
         batch_.number = ++batches_;
         if (current_) batch_.resumed = track_begin{0, current_->name, current_->translation};
-        batch_.rows.reserve(batch_rows);
+        if (spare_rows_.empty()) {
+            batch_.rows.reserve(batch_rows);
+        } else {
+            batch_.rows = std::move(spare_rows_.back());
+            spare_rows_.pop_back();
+        }
         changed_.notify_all();
     }
     void stop() {
@@ -226,6 +231,10 @@ private:
         std::unique_lock lock(mutex_);
         changed_.wait(lock, [this] { return !queue_.empty() || done_ || failure_; });
         if (queue_.empty() || failure_) return false;
+        if (b.rows.capacity() != 0) {  // formatted: its memory is already mapped, unlike a new vector's
+            b.rows.clear();
+            spare_rows_.push_back(std::move(b.rows));
+        }
         b = std::move(queue_.front());
         queue_.pop_front();
         changed_.notify_all();
@@ -252,6 +261,7 @@ private:
     std::optional<track_begin> current_;
     std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
+    std::vector<std::vector<sample>> spare_rows_;  // for the next batches, so that no row lands on a fresh page
     std::mutex mutex_;
     std::condition_variable changed_;
     bool done_ = false;
