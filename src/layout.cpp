@@ -1,6 +1,5 @@
 #include "keyrot/layout.hpp"
 
-#include <fmt/compile.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -250,13 +249,39 @@ char* write_shortest(char* out, double v) noexcept {
     return write_with_point(out, digits, point);
 }
 
+/// For write_fixed: a whole number of up to 1024 bits (32-bit limbs, least
+/// significant first, `n` of them, destroyed) divided by 10^decimals, in
+/// fixed notation without trailing zeros. The number has more digits than
+/// `decimals`.
+char* write_limbs_fixed(char* out, bool negative, std::uint32_t* limbs, int n, int decimals) noexcept {
+    char digits[35 * 9];  // 2^1024 has 309 digits
+    char *begin = std::end(digits), *end = std::end(digits);
+    while (n > 0) {  // the number divided by 10^9, the remainder's 9 digits written
+        std::uint64_t rest = 0;
+        for (int i = n - 1; i >= 0; --i) {
+            const std::uint64_t part = rest << 32 | limbs[i];
+            limbs[i] = static_cast<std::uint32_t>(part / 1000000000);
+            rest = part % 1000000000;
+        }
+        while (n > 0 && limbs[n - 1] == 0) --n;
+        for (int i = 0; i < 9; ++i) *--begin = static_cast<char>('0' + rest % 10), rest /= 10;
+    }
+    while (*begin == '0') ++begin;
+    while (decimals > 0 && end[-1] == '0') --end, --decimals;
+    if (negative) *out++ = '-';
+    out = std::copy(begin, end - decimals, out);
+    if (decimals == 0) return out;
+    *out++ = '.';
+    return std::copy(end - decimals, end, out);
+}
+
 /// v rounded to `decimals` digits after the point (ties to even, on the
 /// exact binary value), trailing zeros dropped, as fmt's "{:.Nf}" and
 /// printf's "%.Nf" round. Exact in integers: v = m 2^-k, so v 10^N rounds to
-/// the quotient of m 10^N (< 2^110) by 2^k. Returns nullptr when the rounded
-/// number could have more than 17 digits (v 10^N >= 10^17 - 1, or v >= 2^52),
-/// for fmt to write: slower, as its fixed notation falls back to big
-/// integers for many numbers. `out` needs 40 bytes of room.
+/// the quotient of m 10^N (< 2^110) by 2^k; a v of 2^52 or more is the whole
+/// number m 2^-k. Not through fmt's fixed notation: its fallback to big
+/// integers, taken for many numbers, is slow (a hundred times as slow for
+/// 1e300). `out` needs max_number_chars bytes of room.
 char* write_fixed(char* out, double v, int decimals) noexcept {
     __extension__ using uint128 = unsigned __int128;
     const auto bits = std::bit_cast<std::uint64_t>(v);
@@ -264,16 +289,26 @@ char* write_fixed(char* out, double v, int decimals) noexcept {
     const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
     const std::uint64_t m = biased == 0 ? fraction : fraction | std::uint64_t{1} << 52;
     const int k = biased == 0 ? 1074 : 1075 - biased;  // v = m 2^-k
-    if (k <= 0) return nullptr;
-    std::uint64_t q = 0;
+    if (k <= 0) {  // m 2^-k, whole
+        std::uint32_t limbs[33] = {};
+        const int word = -k / 32;
+        const uint128 shifted = uint128{m} << (-k % 32);  // < 2^84: three limbs
+        for (int i = 0; i < 3; ++i) limbs[word + i] = static_cast<std::uint32_t>(shifted >> (32 * i));
+        return write_limbs_fixed(out, v < 0, limbs, word + 3, 0);
+    }
+    uint128 rounded = 0;
     if (k < 111) {  // else m 10^N < 2^110 < half of 2^k: rounds to 0
         const uint128 scaled = uint128{m} * powers_of_ten[decimals];
-        const uint128 whole = scaled >> k;
-        if (whole >= powers_of_ten[17] - 1) return nullptr;  // so that rounding up stays below 10^17
-        q = static_cast<std::uint64_t>(whole);
-        const uint128 rest = scaled - (whole << k), half = uint128{1} << (k - 1);
-        if (rest > half || (rest == half && (q & 1) != 0)) ++q;
+        rounded = scaled >> k;
+        const uint128 rest = scaled - (rounded << k), half = uint128{1} << (k - 1);
+        if (rest > half || (rest == half && (rounded & 1) != 0)) ++rounded;
     }
+    if (rounded >= powers_of_ten[17]) {  // more digits than significand_digits holds
+        std::uint32_t limbs[4];
+        for (int i = 0; i < 4; ++i) limbs[i] = static_cast<std::uint32_t>(rounded >> (32 * i));
+        return write_limbs_fixed(out, v < 0, limbs, 4, decimals);
+    }
+    auto q = static_cast<std::uint64_t>(rounded);
     if (q == 0) return *out = '0', out + 1;  // never -0
     while (decimals > 0 && q % 10 == 0) q /= 10, --decimals;
     const auto whole_number = static_cast<std::int64_t>(q);
@@ -298,15 +333,7 @@ char* write_number(char* out, double v, std::optional<int> precision) {
         }
         return write_shortest(out, v);
     }
-    if (char* end = write_fixed(out, v, *precision)) return end;
-    char* const begin = out;
-    char* end = fmt::format_to(out, FMT_COMPILE("{:.{}f}"), v, *precision);
-    if (std::find(begin, end, '.') != end) {
-        while (end[-1] == '0') --end;
-        if (end[-1] == '.') --end;
-    }
-    if (end - begin == 2 && begin[0] == '-' && begin[1] == '0') *begin = '0', --end;  // -0.0001 at 2 digits
-    return end;
+    return write_fixed(out, v, *precision);
 }
 
 void append_number(std::string& out, double v, std::optional<int> precision) {

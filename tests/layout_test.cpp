@@ -104,7 +104,8 @@ TEST_CASE("--precision rounds exactly as printf's \"%.Nf\" and fmt's \"{:.Nf}\""
     for (int decimals = 0; decimals <= 17; ++decimals) {
         for (double v : {0.0, 1.0, 0.1, 1e17, 9.5e16, 99999999999999990.0, 4503599627370495.5, 4503599627370496.0,
                          9007199254740993.0, 1e-18, 5e-18, 1e-300, 5e-324, 2.2250738585072014e-308,
-                         1.7976931348623157e308})
+                         1.7976931348623157e308, 0x1.fffffffffffffp63, 0x1p64, 0x1.0000000000001p95, 0x1p128, 1e300,
+                         99999.999999999985, 123456.78901234567})
             for (double s : {v, -v}) same(s, decimals);
         // Exact ties at this place (odd multiples of 2^-(N+1): to even) and their neighbours.
         for (int i = 0; i < 2000; ++i) {
