@@ -24,8 +24,13 @@ double norm(vec3 v) noexcept {
 
 quat operator-(quat q) noexcept { return {-q.w, -q.x, -q.y, -q.z}; }
 
+namespace {
+
+/// dot2, forced inline so that the FMA clone of each caller has it with the
+/// fused instruction (as a call of its own, link-time optimisation may leave
+/// it, and std::fma with it, to the baseline CPU's library call).
 template <std::size_t N>
-double dot2(const double (&x)[N], const double (&y)[N]) noexcept {
+[[gnu::always_inline]] inline double inline_dot2(const double (&x)[N], const double (&y)[N]) noexcept {
     double sum = 0, err = 0;
     for (std::size_t i = 0; i < N; ++i) {
         const double p = x[i] * y[i];
@@ -37,15 +42,22 @@ double dot2(const double (&x)[N], const double (&y)[N]) noexcept {
     }
     return sum + err;
 }
+
+}  // namespace
+
+template <std::size_t N>
+double dot2(const double (&x)[N], const double (&y)[N]) noexcept {
+    return inline_dot2(x, y);
+}
 template double dot2<2>(const double (&)[2], const double (&)[2]) noexcept;
 template double dot2<3>(const double (&)[3], const double (&)[3]) noexcept;
 template double dot2<4>(const double (&)[4], const double (&)[4]) noexcept;
 
 KEYROT_FMA_CLONES quat operator*(quat a, quat b) noexcept {
-    return {dot2({a.w, -a.x, -a.y, -a.z}, {b.w, b.x, b.y, b.z}),
-            dot2({a.w, a.x, a.y, -a.z}, {b.x, b.w, b.z, b.y}),
-            dot2({a.w, -a.x, a.y, a.z}, {b.y, b.z, b.w, b.x}),
-            dot2({a.w, a.x, -a.y, a.z}, {b.z, b.y, b.x, b.w})};
+    return {inline_dot2({a.w, -a.x, -a.y, -a.z}, {b.w, b.x, b.y, b.z}),
+            inline_dot2({a.w, a.x, a.y, -a.z}, {b.x, b.w, b.z, b.y}),
+            inline_dot2({a.w, -a.x, a.y, a.z}, {b.y, b.z, b.w, b.x}),
+            inline_dot2({a.w, a.x, -a.y, a.z}, {b.z, b.y, b.x, b.w})};
 }
 
 double dot(quat a, quat b) noexcept { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
