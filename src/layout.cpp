@@ -108,6 +108,27 @@ constexpr char digit_pairs[] =
     "40414243444546474849505152535455565758596061626364656667686970717273747576777879"
     "8081828384858687888990919293949596979899";
 
+/// The 8 decimal digits of v < 10^8, leading zeros included, as characters
+/// in one 64-bit word, the first in its lowest byte: halves of 4 digits,
+/// lanes of 2, then of 1 (divisions by constants as multiplications that are
+/// exact in these ranges: checked against printf for every v < 10^8).
+std::uint64_t eight_digits(std::uint32_t v) noexcept {
+    const std::uint64_t halves = v / 10000 | std::uint64_t{v % 10000} << 32;
+    const std::uint64_t hundreds = (halves * 10486) >> 20 & 0x0000007F0000007F;  // each half / 100
+    const std::uint64_t pairs = (halves - 100 * hundreds) << 16 | hundreds;
+    const std::uint64_t tens = (pairs * 103) >> 10 & 0x000F000F000F000F;  // each pair / 10
+    return ((pairs - 10 * tens) << 8 | tens) + 0x3030303030303030;
+}
+
+/// Writes the 8 characters of eight_digits at out.
+void store_eight(char* out, std::uint64_t digits) noexcept {
+    if constexpr (std::endian::native == std::endian::little) {
+        std::memcpy(out, &digits, 8);
+    } else {
+        for (int i = 0; i < 8; ++i) out[i] = static_cast<char>(digits >> (8 * i));
+    }
+}
+
 /// Writes the 16 decimal digits of v < 10^16, leading zeros included: two
 /// halves of 8 digits, all digits in flight at once (divisions by constants
 /// as multiplications that are exact in these ranges: checked against printf
@@ -133,21 +154,8 @@ void write_sixteen(char* out, std::uint64_t v) noexcept {
                                             eight(static_cast<std::uint32_t>(v % 100000000)));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_add_epi8(digits, _mm_set1_epi8('0')));
 #else
-    // In one 64-bit word: halves of 4 digits, lanes of 2, then of 1.
-    const auto eight = [](char* to, std::uint32_t half) {
-        const std::uint64_t halves = half / 10000 | std::uint64_t{half % 10000} << 32;
-        const std::uint64_t hundreds = (halves * 10486) >> 20 & 0x0000007F0000007F;  // each half / 100
-        const std::uint64_t pairs = (halves - 100 * hundreds) << 16 | hundreds;
-        const std::uint64_t tens = (pairs * 103) >> 10 & 0x000F000F000F000F;  // each pair / 10
-        const std::uint64_t ascii = ((pairs - 10 * tens) << 8 | tens) + 0x3030303030303030;  // first digit lowest
-        if constexpr (std::endian::native == std::endian::little) {
-            std::memcpy(to, &ascii, 8);
-        } else {
-            for (int i = 0; i < 8; ++i) to[i] = static_cast<char>(ascii >> (8 * i));
-        }
-    };
-    eight(out, static_cast<std::uint32_t>(v / 100000000));
-    eight(out + 8, static_cast<std::uint32_t>(v % 100000000));
+    store_eight(out, eight_digits(static_cast<std::uint32_t>(v / 100000000)));
+    store_eight(out + 8, eight_digits(static_cast<std::uint32_t>(v % 100000000)));
 #endif
 }
 
@@ -170,17 +178,21 @@ constexpr std::uint64_t powers_of_ten[18] = {1,
                                              10000000000000000,
                                              100000000000000000};
 
+/// The number of decimal digits of v < 10^17 (1 for 0).
+int digit_count(std::uint64_t v) noexcept {
+    const int bits = 64 - std::countl_zero(v | 1);
+    const int count = (bits * 1233 >> 12) + 1;  // floor(log10(2^bits)) + 1: exact or one too many
+    return (v | 1) < powers_of_ten[count - 1] ? count - 1 : count;  // (v | 1: zero has one digit)
+}
+
 /// The decimal digits of a significand (at most 17 of them, as Dragonbox
 /// gives for a double), written as 17 with leading zeros and copied in
 /// fixed-size blocks: no loop or call depends on the digit count.
 class significand_digits {
 public:
-    explicit significand_digits(std::uint64_t v) noexcept {
+    explicit significand_digits(std::uint64_t v) noexcept : count_(digit_count(v)) {
         digits_[0] = static_cast<char>('0' + v / 10000000000000000);
         write_sixteen(digits_ + 1, v % 10000000000000000);
-        const int bits = 64 - std::countl_zero(v | 1);
-        count_ = (bits * 1233 >> 12) + 1;  // floor(log10(2^bits)) + 1: exact or one too many
-        if ((v | 1) < powers_of_ten[count_ - 1]) --count_;  // (v | 1: zero has one digit)
     }
     int count() const noexcept { return count_; }
     /// Writes digits [from, count) at out, and up to 16 bytes of scratch after them.
@@ -196,7 +208,13 @@ private:
 /// |v| < 10^17. `out` needs 18 bytes of room.
 char* write_integer(char* out, std::int64_t v) noexcept {
     if (v < 0) *out++ = '-';
-    const significand_digits digits(static_cast<std::uint64_t>(v < 0 ? -v : v));
+    const auto magnitude = static_cast<std::uint64_t>(v < 0 ? -v : v);
+    if (magnitude < powers_of_ten[8]) {  // frame numbers: in one word, its leading zeros shifted out
+        const int count = digit_count(magnitude);
+        store_eight(out, eight_digits(static_cast<std::uint32_t>(magnitude)) >> (8 * (8 - count)));
+        return out + count;
+    }
+    const significand_digits digits(magnitude);
     digits.copy(out);
     return out + digits.count();
 }

@@ -48,6 +48,7 @@ TEST_CASE("the shortest form is laid out exactly as fmt's \"{}\"") {
         same_as_fmt(v);
     for (double p = 1; p < 1e18; p *= 10)  // whole numbers: the integer path up to 1e15
         for (double v : {p - 1, p, p + 1, -p, 1 - p}) same_as_fmt(v);
+    for (double v = 0; v < 1e6; ++v) same_as_fmt(v);  // frame numbers: every digit count up to 6 and its shift
     for (double v = 0; v < 1e8; v += 997) {  // every digit in every place of both 8-digit halves
         same_as_fmt(v);
         same_as_fmt(v * 1e7 + (1e8 - 1 - v));
