@@ -187,7 +187,10 @@ quat from_matrix(const mat3& mat) noexcept {
 }
 
 axis_angle to_axis_angle(quat q) noexcept {
-    if (q.w < 0) q = -q;
+    // q and -q are one rotation, and the sign of w comes at random: turned
+    // to w >= 0 by a factor rather than a branch to mispredict.
+    const double sign = std::copysign(1.0, q.w);
+    q = {sign * q.w, sign * q.x, sign * q.y, sign * q.z};
     vec3 v = vector_part(q);
     const double sin_half = norm(v);
     if (sin_half == 0) return {};

@@ -242,7 +242,10 @@ char* write_with_point(char* out, const significand_digits& digits, int point) n
 /// writers' hot path (tests/layout_test.cpp compares it with fmt). `out`
 /// needs 40 bytes of room.
 char* write_shortest(char* out, double v) noexcept {
-    if (v < 0) *out++ = '-', v = -v;
+    // Signs of rotation components come at random: no branch to mispredict.
+    *out = '-';
+    out += std::signbit(v);
+    v = std::fabs(v);
     const auto decimal = fmt::detail::dragonbox::to_decimal(v);
     const significand_digits digits(decimal.significand);
     const int count = digits.count();

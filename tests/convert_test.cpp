@@ -106,6 +106,7 @@ TEST_CASE("w < 0 gives the same axis-angle as w > 0") {
         if (q.w > 0) q = -q;
         const axis_angle a = to_axis_angle(q), b = to_axis_angle(-q);
         CHECK(a.angle == b.angle);
+        CHECK((a.axis.x == b.axis.x && a.axis.y == b.axis.y && a.axis.z == b.axis.z));
         CHECK(a.angle <= pi);
         CHECK(same_rotation(from_axis_angle(a.axis, a.angle), q, 1e-15));
     }
