@@ -193,10 +193,14 @@ TEST_CASE("parse_number reads finite doubles only") {
     CHECK(parse_number(" 1.5 ") == 1.5);
     CHECK(parse_number("+2") == 2);
     CHECK(parse_number("-1e-3") == -1e-3);
-    for (const char* bad : {"", "abc", "1.5x", "nan", "inf", "-inf", "1e400", "++1", "1 2", "0x10"}) {
+    for (const char* bad : {"", "abc", "1.5x", "nan", "inf", "-inf", "1e400", "++1", "1 2", "0x10", "-", "--1", "-+1",
+                            "- 1", "-nan", "-1e400"}) {
         CAPTURE(bad);
         CHECK_FALSE(parse_number(bad));
     }
+    const auto negative_zero = parse_number("-0");
+    REQUIRE(negative_zero);
+    CHECK((*negative_zero == 0 && std::signbit(*negative_zero)));
 }
 
 TEST_CASE("UTF-8 validation") {
