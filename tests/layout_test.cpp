@@ -210,4 +210,22 @@ TEST_CASE("UTF-8 validation") {
     CHECK_FALSE(is_valid_utf8("\xC3"));
     CHECK_FALSE(is_valid_utf8("\xC0\xAF"));          // overlong
     CHECK_FALSE(is_valid_utf8("\xED\xA0\x80"));      // surrogate
+    // Lines of 8 bytes and more are first checked a word at a time: a byte
+    // of any value at any place of them, and at their end.
+    for (std::size_t size = 8; size <= 40; ++size) {
+        for (std::size_t at = 0; at < size; ++at) {
+            CAPTURE(size);
+            CAPTURE(at);
+            std::string line(size, 'a');
+            CHECK(is_valid_utf8(line));
+            line[at] = '\xFF';
+            CHECK_FALSE(is_valid_utf8(line));
+            line[at] = '\x7F';
+            CHECK(is_valid_utf8(line));
+            line.replace(at, 1, "\xC3\xBC");  // ü
+            CHECK(is_valid_utf8(line));
+            line.pop_back();
+            CHECK(is_valid_utf8(line) == (at + 1 < line.size()));  // ü cut in half where it was last
+        }
+    }
 }
