@@ -442,7 +442,7 @@ bool is_valid_utf8(std::string_view text) noexcept {
         if (((high | word) & 0x8080808080808080u) == 0) return true;
     }
     while (p < end) {
-        // ASCII, the common case, eight bytes at a time
+        // runs of ASCII between the other characters, eight bytes at a time
         std::uint64_t word;
         if (end - p >= 8 && (std::memcpy(&word, p, 8), (word & 0x8080808080808080u) == 0)) {
             p += 8;
