@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
 #include <deque>
 #include <map>
 
@@ -53,9 +56,13 @@ private:
     std::deque<std::string> quoted_;  // stable addresses for the views
 };
 
+/// Rows of at most this many cells, all numbers, are read by the fast path.
+constexpr std::size_t max_plain_cells = 24;
+
 /// Where each known column is, resolved once from the header.
 struct columns {
     std::size_t count = 0;
+    bool numbers_only = false;  // no track, no ignored columns, at most max_plain_cells
     std::optional<std::size_t> track, time, frame;
     rep kind = rep::quat;
     std::vector<std::size_t> rotation;  // in (w, x, y, z) order for quaternions
@@ -127,6 +134,8 @@ columns parse_header(const std::vector<std::string_view>& cells, const std::stri
             throw input_error(where, "4x4 matrix and tx ty tz columns: expected one translation per key");
         cols.translation = std::array<std::size_t, 3>{*tx, *ty, *tz};
     }
+    cols.numbers_only = !cols.track && cols.count <= max_plain_cells &&
+                        std::all_of(known.begin(), known.end(), [](bool k) { return k; });
     for (std::size_t i = 0; i < cells.size(); ++i)
         if (!known[i])
             warn.once("column", trim(cells[i]).empty() ? fmt::format("ignoring unnamed column {}", i + 1)
@@ -177,20 +186,22 @@ public:
 
     bool next(std::string& track, raw_key& k) override {
         std::string_view line;
-        if (first_key_pending_) {
-            first_key_pending_ = false;
-            line = first_key_;
-        } else {
-            do {
-                if (!lines_.next(line)) return false;
-            } while (skip(line));
-        }
+        do {
+            if (first_key_pending_) {
+                first_key_pending_ = false;
+                line = first_key_;
+            } else if (!lines_.next(line)) {
+                return false;
+            }
+            if (read_plain(line, k)) {
+                track.clear();
+                return true;
+            }
+        } while (skip(line));
         const auto& cells = splitter_.split(line, source_, lines_.number());
         if (cells.size() != cols_.count)
             throw input_error(where_now(), fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
-        k = raw_key{};
-        k.at.line = lines_.number();
-        k.kind = cols_.kind;
+        new_key(k);
         if (cols_.time && !(cols_.frame && empty_cell(cells, *cols_.time))) k.time = number(cells, *cols_.time, "time");
         if (cols_.frame && !(cols_.time && empty_cell(cells, *cols_.frame))) k.frame = number(cells, *cols_.frame, "frame");
         if (!k.time && !k.frame) throw input_error(where_now(), "no time: expected a 'time' or a 'frame'");
@@ -214,6 +225,38 @@ public:
     }
 
 private:
+    /// The common row, read without splitting it into cells first: every
+    /// column a number (no track, no ignored columns) and every cell one
+    /// right against its commas (no spaces, quotes, '+' or empty cells).
+    /// Such cells are all next() would accept, and read the same. False for
+    /// any other line, which next() then reads cell by cell (and words the
+    /// error for, if need be).
+    bool read_plain(std::string_view line, raw_key& k) {
+        if (!cols_.numbers_only) return false;
+        std::array<double, max_plain_cells> cell;
+        const char* p = line.data();
+        const char* const end = p + line.size();
+        for (std::size_t i = 0; i < cols_.count; ++i) {
+            if (i > 0 && (p == end || *p++ != ',')) return false;
+            const auto [stop, ec] = std::from_chars(p, end, cell[i]);
+            if (ec != std::errc{} || !std::isfinite(cell[i])) return false;
+            p = stop;
+        }
+        if (p != end) return false;
+        new_key(k);
+        if (cols_.time) k.time = cell[*cols_.time];
+        if (cols_.frame) k.frame = cell[*cols_.frame];
+        for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = cell[cols_.rotation[i]];
+        if (const auto& t = cols_.translation) k.translation = vec3{cell[(*t)[0]], cell[(*t)[1]], cell[(*t)[2]]};
+        return true;
+    }
+
+    void new_key(raw_key& k) const {
+        k = raw_key{};
+        k.at.line = lines_.number();
+        k.kind = cols_.kind;
+    }
+
     /// Blank lines and comments; and anything that is not UTF-8 is an error.
     bool skip(std::string_view line) {
         const std::string_view content = trim(line);

@@ -4,6 +4,9 @@
 #include <doctest/doctest.h>
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cstring>
+#include <random>
 #include <sstream>
 
 #include "helpers.hpp"
@@ -113,6 +116,82 @@ TEST_CASE("CSV errors name the line and what was expected") {
     CHECK(error_of("# c\ntime,qw,qx,qy,qz\n", format::csv) == "in:2: no keys: expected at least one key");
     CHECK(error_of("time,rx,ry,rz,tx,ty,tz\n0,0,0,0,1,,\n", format::csv).find("in:2: columns tx ty tz") == 0);
     CHECK(error_of("track,time,rx,ry,rz\n\xFF,0,0,0,0\n", format::csv) == "in:2: invalid UTF-8: expected text");
+}
+
+TEST_CASE("CSV: a row of plain numbers reads as the same row read cell by cell") {
+    // A row whose every cell is a number against its commas takes the fast
+    // path; with a space around each cell the same row is split into cells
+    // and trimmed. Both must give the same key, to the bit.
+    std::mt19937_64 gen(7);
+    std::uniform_real_distribution<double> unit(-1, 1);
+    std::uniform_int_distribution<int> exponent(-1074, 1000);
+    const auto text_of = [&](int how) -> std::string {
+        const double v = unit(gen);
+        switch (how % 6) {
+            case 0: return fmt::format("{}", v);
+            case 1: return fmt::format("{:.18e}", v);  // numpy's savetxt
+            case 2: return fmt::format("{}", std::ldexp(v, exponent(gen)));  // subnormal to 1e301
+            case 3: return fmt::format("{}", static_cast<int>(v * 1000));
+            case 4: return v < 0 ? "-0" : "0.";
+            default: return fmt::format("{:.3f}", v).substr(v < 0 ? 0 : 1);  // ".123"
+        }
+    };
+    for (const std::string header : {"time,qw,qx,qy,qz", "qz,QX,frame,qy,qw,time", "time,rx,ry,rz,tx,ty,tz",
+                                     "frame,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33"}) {
+        CAPTURE(header);
+        const auto cells = static_cast<int>(std::count(header.begin(), header.end(), ',')) + 1;
+        std::string plain = header + "\n", spaced = header + "\n";
+        for (int row = 0; row < 200; ++row) {
+            for (int c = 0; c < cells; ++c) {
+                const std::string cell = text_of(row + c);
+                plain += (c ? "," : "") + cell;
+                spaced += (c ? ", " : " ") + cell + (row % 2 ? "\t" : "");
+            }
+            plain += '\n', spaced += '\n';
+        }
+        const auto fast = read(plain, format::csv), slow = read(spaced, format::csv);
+        const auto& a = fast.tracks.at(0).keys;
+        const auto& b = slow.tracks.at(0).keys;
+        REQUIRE(a.size() == 200);
+        REQUIRE(b.size() == 200);
+        for (std::size_t i = 0; i < a.size(); ++i) {
+            CAPTURE(i);
+            CHECK(a[i].at.line == i + 2);
+            CHECK(a[i].at.line == b[i].at.line);
+            CHECK(a[i].kind == b[i].kind);
+            CHECK(a[i].time == b[i].time);
+            CHECK(a[i].frame == b[i].frame);
+            CHECK(std::memcmp(a[i].values.data(), b[i].values.data(), sizeof a[i].values) == 0);
+            CHECK(a[i].translation.has_value() == b[i].translation.has_value());
+            if (a[i].translation) CHECK(std::memcmp(&*a[i].translation, &*b[i].translation, sizeof(vec3)) == 0);
+        }
+    }
+}
+
+TEST_CASE("CSV: rows the fast path leaves to cell by cell reading") {
+    const std::string header = "time,qw,qx,qy,qz\n";
+    const auto value = [&](std::string_view row) { return read(header + std::string(row), format::csv).tracks[0].keys[0]; };
+    CHECK(value("0,+1,0,0,0").values[0] == 1);
+    CHECK(value("0,1 ,0,0,0").values[0] == 1);
+    CHECK(value("0,\"1\",0,0,0").values[0] == 1);
+    const auto error = [&](std::string_view row) { return error_of(header + std::string(row), format::csv); };
+    CHECK(error("0,1,0,0,0,0") == "in:2: expected 5 cells as in the header, got 6");
+    CHECK(error("0,1,0,0,0,") == "in:2: expected 5 cells as in the header, got 6");
+    CHECK(error("0,1,0,0") == "in:2: expected 5 cells as in the header, got 4");
+    CHECK(error("0,1,0,,0") == "in:2: column 'qy': expected a finite number, got ''");
+    CHECK(error("0,1,0,0,inf") == "in:2: column 'qz': expected a finite number, got 'inf'");
+    CHECK(error("0,1,0,0,0x1") == "in:2: column 'qz': expected a finite number, got '0x1'");
+    CHECK(error("0,1,0,0,1e") == "in:2: column 'qz': expected a finite number, got '1e'");
+    CHECK(error("0,-,0,0,0") == "in:2: column 'qw': expected a finite number, got '-'");
+    CHECK(error("0,1,0,0,1e400") == "in:2: column 'qz': expected a finite number, got '1e400'");
+    CHECK(error("0;1,0,0,0") == "in:2: expected 5 cells as in the header, got 4");
+    // Not every column a number: the track's name, an ignored column.
+    CHECK(read("track,time,qw,qx,qy,qz\nhip,0,1,0,0,0\n", format::csv).tracks[0].name == "hip");
+    std::ostringstream err;
+    warnings warn(err, "in");
+    read_options o;
+    o.source = "in";
+    CHECK(read_document("time,qw,qx,qy,qz,note\n0,1,0,0,0,x\n", format::csv, o, warn).tracks[0].keys[0].values[0] == 1);
 }
 
 TEST_CASE("CSV: numpy.savetxt's commented header, pandas' unnamed index column") {
