@@ -56,13 +56,13 @@ private:
     std::deque<std::string> quoted_;  // stable addresses for the views
 };
 
-/// Rows of at most this many cells, all numbers, are read by the fast path.
+/// Rows of at most this many cells may be read by the fast path.
 constexpr std::size_t max_plain_cells = 24;
 
 /// Where each known column is, resolved once from the header.
 struct columns {
     std::size_t count = 0;
-    bool numbers_only = false;  // no track, no ignored columns, at most max_plain_cells
+    bool plain = false;  // no ignored columns, at most max_plain_cells: rows for csv_rows::read_plain
     std::optional<std::size_t> track, time, frame;
     rep kind = rep::quat;
     std::vector<std::size_t> rotation;  // in (w, x, y, z) order for quaternions
@@ -134,8 +134,7 @@ columns parse_header(const std::vector<std::string_view>& cells, const std::stri
             throw input_error(where, "4x4 matrix and tx ty tz columns: expected one translation per key");
         cols.translation = std::array<std::size_t, 3>{*tx, *ty, *tz};
     }
-    cols.numbers_only = !cols.track && cols.count <= max_plain_cells &&
-                        std::all_of(known.begin(), known.end(), [](bool k) { return k; });
+    cols.plain = cols.count <= max_plain_cells && std::all_of(known.begin(), known.end(), [](bool k) { return k; });
     for (std::size_t i = 0; i < cells.size(); ++i)
         if (!known[i])
             warn.once("column", trim(cells[i]).empty() ? fmt::format("ignoring unnamed column {}", i + 1)
@@ -193,10 +192,7 @@ public:
             } else if (!lines_.next(line)) {
                 return false;
             }
-            if (read_plain(line, k)) {
-                track.clear();
-                return true;
-            }
+            if (read_plain(line, track, k)) return true;
         } while (skip(line));
         const auto& cells = splitter_.split(line, source_, lines_.number());
         if (cells.size() != cols_.count)
@@ -225,22 +221,32 @@ public:
     }
 
 private:
-    /// The common row, read without splitting it into cells first: every
-    /// column a number (no track, no ignored columns) and every cell one
-    /// right against its commas (no spaces, quotes, '+' or empty cells).
-    /// Such cells are all next() would accept, and read the same. False for
-    /// any other line, which next() then reads cell by cell (and words the
-    /// error for, if need be).
-    bool read_plain(std::string_view line, raw_key& k) {
-        if (!cols_.numbers_only) return false;
+    /// The common row, read without splitting it into cells first: numbers
+    /// and a track name, no ignored columns. Each number may have spaces or
+    /// tabs around it, but no '+', quotes or empty cells; a track name is
+    /// printable ASCII without quotes or '#'. Such rows are all next() would
+    /// accept, and read the same. False for any other line, which next()
+    /// then reads cell by cell (and words the error for, if need be).
+    bool read_plain(std::string_view line, std::string& track, raw_key& k) {
+        if (!cols_.plain) return false;
         std::array<double, max_plain_cells> cell;
+        std::string_view name;
         const char* p = line.data();
         const char* const end = p + line.size();
         for (std::size_t i = 0; i < cols_.count; ++i) {
             if (i > 0 && (p == end || *p++ != ',')) return false;
+            if (i == cols_.track) {
+                const char* const start = p;
+                for (; p != end && *p != ','; ++p)
+                    if (*p < ' ' || *p > '~' || *p == '"' || *p == '#') return false;
+                name = trim(std::string_view(start, static_cast<std::size_t>(p - start)));
+                if (name.empty()) return false;
+                continue;
+            }
+            p = after_blanks(p, end);
             const auto [stop, ec] = std::from_chars(p, end, cell[i]);
             if (ec != std::errc{} || !std::isfinite(cell[i])) return false;
-            p = stop;
+            p = after_blanks(stop, end);
         }
         if (p != end) return false;
         new_key(k);
@@ -248,7 +254,13 @@ private:
         if (cols_.frame) k.frame = cell[*cols_.frame];
         for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = cell[cols_.rotation[i]];
         if (const auto& t = cols_.translation) k.translation = vec3{cell[(*t)[0]], cell[(*t)[1]], cell[(*t)[2]]};
+        track = name;
         return true;
+    }
+
+    static const char* after_blanks(const char* p, const char* end) noexcept {
+        while (p != end && (*p == ' ' || *p == '\t')) ++p;
+        return p;
     }
 
     void new_key(raw_key& k) const {

@@ -118,14 +118,23 @@ TEST_CASE("CSV errors name the line and what was expected") {
     CHECK(error_of("track,time,rx,ry,rz\n\xFF,0,0,0,0\n", format::csv) == "in:2: invalid UTF-8: expected text");
 }
 
-TEST_CASE("CSV: a row of plain numbers reads as the same row read cell by cell") {
-    // A row whose every cell is a number against its commas takes the fast
-    // path; with a space around each cell the same row is split into cells
-    // and trimmed. Both must give the same key, to the bit.
+namespace {
+
+/// Both empty, or the same double to the bit (-0 is not 0).
+bool same_bits(std::optional<double> a, std::optional<double> b) {
+    return a.has_value() == b.has_value() && (!a || std::memcmp(&*a, &*b, sizeof(double)) == 0);
+}
+
+}  // namespace
+
+TEST_CASE("CSV: a plain row reads as the same row read cell by cell") {
+    // Rows of numbers and track names take the fast path, with or without
+    // blanks around the cells; with every cell quoted the same row is split
+    // into cells and unquoted. All must give the same keys, to the bit.
     std::mt19937_64 gen(7);
     std::uniform_real_distribution<double> unit(-1, 1);
     std::uniform_int_distribution<int> exponent(-1074, 1000);
-    const auto text_of = [&](int how) -> std::string {
+    const auto text_of = [&](std::size_t how) -> std::string {
         const double v = unit(gen);
         switch (how % 6) {
             case 0: return fmt::format("{}", v);
@@ -136,34 +145,50 @@ TEST_CASE("CSV: a row of plain numbers reads as the same row read cell by cell")
             default: return fmt::format("{:.3f}", v).substr(v < 0 ? 0 : 1);  // ".123"
         }
     };
-    for (const std::string header : {"time,qw,qx,qy,qz", "qz,QX,frame,qy,qw,time", "time,rx,ry,rz,tx,ty,tz",
-                                     "frame,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33"}) {
+    const std::vector<std::string> names = {"hip", "left knee", "a.b-c_d(1)", "x"};
+    for (const std::string header :
+         {"time,qw,qx,qy,qz", "qz,QX,frame,qy,qw,time", "time,rx,ry,rz,tx,ty,tz", "track,time,qw,qx,qy,qz",
+          "time,e1,e2,e3,track,frame", "frame,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33"}) {
         CAPTURE(header);
-        const auto cells = static_cast<int>(std::count(header.begin(), header.end(), ',')) + 1;
-        std::string plain = header + "\n", spaced = header + "\n";
-        for (int row = 0; row < 200; ++row) {
-            for (int c = 0; c < cells; ++c) {
-                const std::string cell = text_of(row + c);
-                plain += (c ? "," : "") + cell;
-                spaced += (c ? ", " : " ") + cell + (row % 2 ? "\t" : "");
+        const auto cells = static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
+        const auto before_track = std::string_view(header).substr(0, header.find("track"));
+        const auto track_at = before_track.size() == header.size()
+                                  ? cells
+                                  : static_cast<std::size_t>(std::count(before_track.begin(), before_track.end(), ','));
+        std::array<std::string, 3> text;  // plain, with blanks, quoted
+        text.fill(header + "\n");
+        constexpr std::size_t rows = 200;
+        for (std::size_t row = 0; row < rows; ++row) {
+            for (std::size_t c = 0; c < cells; ++c) {
+                const std::string cell = c == track_at ? names[row * names.size() / rows] : text_of(row + c);
+                const std::string_view comma = c ? "," : "";
+                text[0] += fmt::format("{}{}", comma, cell);
+                text[1] += fmt::format("{}{}{}{}", comma, row % 2 ? " " : "\t ", cell, row % 3 ? "" : " \t");
+                text[2] += fmt::format("{}\"{}\"", comma, cell);
             }
-            plain += '\n', spaced += '\n';
+            for (auto& t : text) t += '\n';
         }
-        const auto fast = read(plain, format::csv), slow = read(spaced, format::csv);
-        const auto& a = fast.tracks.at(0).keys;
-        const auto& b = slow.tracks.at(0).keys;
-        REQUIRE(a.size() == 200);
-        REQUIRE(b.size() == 200);
-        for (std::size_t i = 0; i < a.size(); ++i) {
-            CAPTURE(i);
-            CHECK(a[i].at.line == i + 2);
-            CHECK(a[i].at.line == b[i].at.line);
-            CHECK(a[i].kind == b[i].kind);
-            CHECK(a[i].time == b[i].time);
-            CHECK(a[i].frame == b[i].frame);
-            CHECK(std::memcmp(a[i].values.data(), b[i].values.data(), sizeof a[i].values) == 0);
-            CHECK(a[i].translation.has_value() == b[i].translation.has_value());
-            if (a[i].translation) CHECK(std::memcmp(&*a[i].translation, &*b[i].translation, sizeof(vec3)) == 0);
+        const auto want = read(text[2], format::csv);
+        REQUIRE(want.tracks.size() == (track_at < cells ? names.size() : 1));
+        for (const auto& t : {text[0], text[1]}) {
+            const auto got = read(t, format::csv);
+            REQUIRE(got.tracks.size() == want.tracks.size());
+            for (std::size_t n = 0; n < got.tracks.size(); ++n) {
+                const auto& a = got.tracks[n].keys;
+                const auto& b = want.tracks[n].keys;
+                CHECK(got.tracks[n].name == want.tracks[n].name);
+                REQUIRE(a.size() == b.size());
+                for (std::size_t i = 0; i < a.size(); ++i) {
+                    CAPTURE(i);
+                    CHECK(a[i].at.line == b[i].at.line);
+                    CHECK(a[i].kind == b[i].kind);
+                    CHECK(same_bits(a[i].time, b[i].time));
+                    CHECK(same_bits(a[i].frame, b[i].frame));
+                    CHECK(std::memcmp(a[i].values.data(), b[i].values.data(), sizeof a[i].values) == 0);
+                    CHECK(a[i].translation.has_value() == b[i].translation.has_value());
+                    if (a[i].translation) CHECK(std::memcmp(&*a[i].translation, &*b[i].translation, sizeof(vec3)) == 0);
+                }
+            }
         }
     }
 }
@@ -172,8 +197,8 @@ TEST_CASE("CSV: rows the fast path leaves to cell by cell reading") {
     const std::string header = "time,qw,qx,qy,qz\n";
     const auto value = [&](std::string_view row) { return read(header + std::string(row), format::csv).tracks[0].keys[0]; };
     CHECK(value("0,+1,0,0,0").values[0] == 1);
-    CHECK(value("0,1 ,0,0,0").values[0] == 1);
     CHECK(value("0,\"1\",0,0,0").values[0] == 1);
+    CHECK(value("0,1,0,0,0\t ").values[0] == 1);
     const auto error = [&](std::string_view row) { return error_of(header + std::string(row), format::csv); };
     CHECK(error("0,1,0,0,0,0") == "in:2: expected 5 cells as in the header, got 6");
     CHECK(error("0,1,0,0,0,") == "in:2: expected 5 cells as in the header, got 6");
@@ -185,8 +210,22 @@ TEST_CASE("CSV: rows the fast path leaves to cell by cell reading") {
     CHECK(error("0,-,0,0,0") == "in:2: column 'qw': expected a finite number, got '-'");
     CHECK(error("0,1,0,0,1e400") == "in:2: column 'qz': expected a finite number, got '1e400'");
     CHECK(error("0;1,0,0,0") == "in:2: expected 5 cells as in the header, got 4");
-    // Not every column a number: the track's name, an ignored column.
-    CHECK(read("track,time,qw,qx,qy,qz\nhip,0,1,0,0,0\n", format::csv).tracks[0].name == "hip");
+    CHECK(error("0,1 0,0,0,0") == "in:2: column 'qw': expected a finite number, got '1 0'");
+    // Track names the fast path leaves alone: quoted, not ASCII, with '#' or
+    // a tab, or empty; and a comment is not a key of track '#'.
+    const std::string named = "track,time,qw,qx,qy,qz\n";
+    const auto track = [&](std::string_view row) { return read(named + std::string(row), format::csv).tracks.at(0).name; };
+    CHECK(track("\"hip\",0,1,0,0,0") == "hip");
+    CHECK(track("\"a,b\",0,1,0,0,0") == "a,b");
+    CHECK(track("H\xC3\xBC""fte,0,1,0,0,0") == "H\xC3\xBC""fte");
+    CHECK(track("a#1,0,1,0,0,0") == "a#1");
+    CHECK(track(" hip\t,0,1,0,0,0") == "hip");
+    CHECK(read(named + "# hip,0,1,0,0,0\nhip,0,1,0,0,0\n", format::csv).tracks.at(0).keys.at(0).at.line == 3);
+    const auto track_error = [&](std::string_view row) { return error_of(named + std::string(row), format::csv); };
+    CHECK(track_error(" ,0,1,0,0,0") == "in:2: column 'track': expected a track name, got an empty cell");
+    CHECK(track_error("a\tb,0,1,0,0,0") == "in:2: track name 'a\tb' has control characters: expected printable text");
+    CHECK(track_error("a\xFF,0,1,0,0,0") == "in:2: invalid UTF-8: expected text");
+    // An ignored column.
     std::ostringstream err;
     warnings warn(err, "in");
     read_options o;
