@@ -8,6 +8,8 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <optional>
+#include <utility>
 
 
 namespace keyrot {
@@ -144,78 +146,53 @@ columns parse_header(const std::vector<std::string_view>& cells, const std::stri
 
 bool empty_cell(const std::vector<std::string_view>& cells, std::size_t at) { return trim(cells[at]).empty(); }
 
-class csv_reader final : public key_reader {
+/// Blank lines and comments; and anything that is not UTF-8 is an error.
+bool skipped(std::string_view line, const std::string& source, std::size_t number) {
+    const std::string_view content = trim(line);
+    if (content.empty() || content.front() == '#') return true;
+    if (!is_valid_utf8(line)) throw input_error(fmt::format("{}:{}", source, number), "invalid UTF-8: expected text");
+    return false;
+}
+
+/// The keys on the rows of a table whose header is read: each row apart
+/// from the others, so that copies on several threads can share the rows
+/// (read_ahead).
+class csv_rows final : public line_parser {
 public:
-    csv_reader(std::istream& in, const read_options& opts, warnings& warn) : lines_(in), source_(opts.source) {
-        // numpy.savetxt writes its header as a comment ("# time,qw,..."):
-        // the last comment before the first row is the header when it names
-        // a time column and the row does not.
-        std::string comment;
-        std::size_t comment_line = 0;  // 0: the last comment (if any) names no time column
-        std::string_view line;
-        while (lines_.next(line)) {
-            if (skip(line)) {
-                const auto content = trim(line);
-                if (content.empty()) continue;  // a blank line
-                comment_line = names_time(content.substr(1)) ? lines_.number() : 0;
-                if (comment_line != 0) comment = content.substr(1);
-                continue;
-            }
-            if (comment_line != 0 && !names_time(line)) {
-                first_key_ = line;  // kept for next(): reading on reuses the line's memory
-                first_key_pending_ = true;
-                header_line_ = comment_line;
-                cols_ = parse_header(splitter_.split(comment, source_, comment_line),
-                                     fmt::format("{}:{}", source_, comment_line), warn);
-                return;
-            }
-            const auto& cells = splitter_.split(line, source_, lines_.number());
-            if (std::all_of(cells.begin(), cells.end(), [](auto c) { return parse_number(c).has_value(); }))
-                throw input_error(where_now(), "expected a header line naming the columns (time or frame, and "
-                                               "the rotation's), got a row of numbers");
-            header_line_ = lines_.number();
-            cols_ = parse_header(cells, where_now(), warn);
-            return;
-        }
-        throw input_error(source_, "empty input: expected a CSV header and keys");
-    }
+    csv_rows(columns cols, std::string source) : cols_(std::move(cols)), source_(std::move(source)) {}
+    const columns& cols() const noexcept { return cols_; }
 
-    bool named() const override { return cols_.track.has_value(); }
-    location start() const override { return {header_line_, {}}; }
-
-    bool next(std::string& track, raw_key& k) override {
-        std::string_view line;
-        do {
-            if (first_key_pending_) {
-                first_key_pending_ = false;
-                line = first_key_;
-            } else if (!lines_.next(line)) {
-                return false;
-            }
-            if (read_plain(line, track, k)) return true;
-        } while (skip(line));
-        const auto& cells = splitter_.split(line, source_, lines_.number());
+    bool parse(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) override {
+        if (read_plain(line, line_no, track, k)) return true;
+        if (skipped(line, source_, line_no)) return false;
+        const auto where = [&] { return fmt::format("{}:{}", source_, line_no); };
+        const auto& cells = splitter_.split(line, source_, line_no);
         if (cells.size() != cols_.count)
-            throw input_error(where_now(), fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
-        new_key(k);
-        if (cols_.time && !(cols_.frame && empty_cell(cells, *cols_.time))) k.time = number(cells, *cols_.time, "time");
-        if (cols_.frame && !(cols_.time && empty_cell(cells, *cols_.frame))) k.frame = number(cells, *cols_.frame, "frame");
-        if (!k.time && !k.frame) throw input_error(where_now(), "no time: expected a 'time' or a 'frame'");
+            throw input_error(where(), fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
+        const auto number = [&](std::size_t at, std::string_view name) {
+            if (auto v = parse_number(cells[at])) return *v;
+            throw input_error(where(), fmt::format("column '{}': expected a finite number, got '{}'", name,
+                                                   trim(cells[at]).substr(0, 40)));
+        };
+        new_key(k, line_no);
+        if (cols_.time && !(cols_.frame && empty_cell(cells, *cols_.time))) k.time = number(*cols_.time, "time");
+        if (cols_.frame && !(cols_.time && empty_cell(cells, *cols_.frame))) k.frame = number(*cols_.frame, "frame");
+        if (!k.time && !k.frame) throw input_error(where(), "no time: expected a 'time' or a 'frame'");
         const auto names = rotation_columns(cols_.kind, quat_order::wxyz);
-        for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = number(cells, cols_.rotation[i], names[i]);
+        for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = number(cols_.rotation[i], names[i]);
         if (cols_.translation) {
             const auto& t = *cols_.translation;
             const int empty = empty_cell(cells, t[0]) + empty_cell(cells, t[1]) + empty_cell(cells, t[2]);
             if (empty == 0)
-                k.translation = vec3{number(cells, t[0], "tx"), number(cells, t[1], "ty"), number(cells, t[2], "tz")};
+                k.translation = vec3{number(t[0], "tx"), number(t[1], "ty"), number(t[2], "tz")};
             else if (empty != 3)
-                throw input_error(where_now(), "columns tx ty tz: expected three numbers or three empty cells");
+                throw input_error(where(), "columns tx ty tz: expected three numbers or three empty cells");
         }
         track.clear();
         if (cols_.track) {
             track = trim(cells[*cols_.track]);
-            if (track.empty()) throw input_error(where_now(), "column 'track': expected a track name, got an empty cell");
-            check_track_name(track, where_now());
+            if (track.empty()) throw input_error(where(), "column 'track': expected a track name, got an empty cell");
+            check_track_name(track, where());
         }
         return true;
     }
@@ -224,10 +201,10 @@ private:
     /// The common row, read without splitting it into cells first: numbers
     /// and a track name, no ignored columns. Each number may have spaces or
     /// tabs around it, but no '+', quotes or empty cells; a track name is
-    /// printable ASCII without quotes or '#'. Such rows are all next() would
-    /// accept, and read the same. False for any other line, which next()
-    /// then reads cell by cell (and words the error for, if need be).
-    bool read_plain(std::string_view line, std::string& track, raw_key& k) {
+    /// printable ASCII without quotes or '#'. Such rows are all parse()
+    /// would accept, and read the same. False for any other line, which
+    /// parse() then reads cell by cell (and words the error for, if need be).
+    bool read_plain(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) const {
         if (!cols_.plain) return false;
         std::array<double, max_plain_cells> cell;
         std::string_view name;
@@ -249,7 +226,7 @@ private:
             p = after_blanks(stop, end);
         }
         if (p != end) return false;
-        new_key(k);
+        new_key(k, line_no);
         if (cols_.time) k.time = cell[*cols_.time];
         if (cols_.frame) k.frame = cell[*cols_.frame];
         for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = cell[cols_.rotation[i]];
@@ -263,28 +240,82 @@ private:
         return p;
     }
 
-    void new_key(raw_key& k) const {
+    void new_key(raw_key& k, std::size_t line_no) const {
         k = raw_key{};
-        k.at.line = lines_.number();
+        k.at.line = line_no;
         k.kind = cols_.kind;
     }
 
-    /// Blank lines and comments; and anything that is not UTF-8 is an error.
-    bool skip(std::string_view line) {
-        const std::string_view content = trim(line);
-        if (content.empty() || content.front() == '#') return true;
-        if (!is_valid_utf8(line)) throw input_error(where_now(), "invalid UTF-8: expected text");
+    columns cols_;
+    std::string source_;
+    cell_splitter splitter_;
+};
+
+class csv_reader final : public key_reader {
+public:
+    csv_reader(std::istream& in, const read_options& opts, warnings& warn) : lines_(in) {
+        // numpy.savetxt writes its header as a comment ("# time,qw,..."):
+        // the last comment before the first row is the header when it names
+        // a time column and the row does not.
+        const std::string& source = opts.source;
+        cell_splitter splitter;
+        std::string comment;
+        std::size_t comment_line = 0;  // 0: the last comment (if any) names no time column
+        std::string_view line;
+        while (lines_.next(line)) {
+            if (skipped(line, source, lines_.number())) {
+                const auto content = trim(line);
+                if (content.empty()) continue;  // a blank line
+                comment_line = names_time(content.substr(1)) ? lines_.number() : 0;
+                if (comment_line != 0) comment = content.substr(1);
+                continue;
+            }
+            if (comment_line != 0 && !names_time(line)) {
+                first_key_ = line;  // kept for next_line(): reading on reuses the line's memory
+                first_key_line_ = lines_.number();
+                header_line_ = comment_line;
+                rows_.emplace(parse_header(splitter.split(comment, source, comment_line),
+                                           fmt::format("{}:{}", source, comment_line), warn),
+                              source);
+                return;
+            }
+            const std::string where = fmt::format("{}:{}", source, lines_.number());
+            const auto& cells = splitter.split(line, source, lines_.number());
+            if (std::all_of(cells.begin(), cells.end(), [](auto c) { return parse_number(c).has_value(); }))
+                throw input_error(where, "expected a header line naming the columns (time or frame, and "
+                                         "the rotation's), got a row of numbers");
+            header_line_ = lines_.number();
+            rows_.emplace(parse_header(cells, where, warn), source);
+            return;
+        }
+        throw input_error(source, "empty input: expected a CSV header and keys");
+    }
+
+    bool named() const override { return rows_->cols().track.has_value(); }
+    location start() const override { return {header_line_, {}}; }
+
+    bool next(std::string& track, raw_key& k) override {
+        std::string_view line;
+        std::size_t line_no;
+        while (next_line(line, line_no))
+            if (rows_->parse(line, line_no, track, k)) return true;
         return false;
     }
 
-    std::string where_now() const { return fmt::format("{}:{}", source_, lines_.number()); }
-
-    double number(const std::vector<std::string_view>& cells, std::size_t at, std::string_view name) const {
-        if (auto v = parse_number(cells[at])) return *v;
-        throw input_error(where_now(), fmt::format("column '{}': expected a finite number, got '{}'", name,
-                                                   trim(cells[at]).substr(0, 40)));
+    bool next_line(std::string_view& line, std::size_t& line_no) override {
+        if (first_key_line_ != 0) {
+            line = first_key_;
+            line_no = std::exchange(first_key_line_, 0);
+            return true;
+        }
+        if (!lines_.next(line)) return false;
+        line_no = lines_.number();
+        return true;
     }
 
+    std::unique_ptr<line_parser> parser() const override { return std::make_unique<csv_rows>(*rows_); }
+
+private:
     /// Whether a line has a cell 'time' or 'frame' (any case, unquoted).
     static bool names_time(std::string_view line) {
         for (std::size_t start = 0; start <= line.size();) {
@@ -297,12 +328,10 @@ private:
     }
 
     line_reader lines_;
-    std::string source_;
-    cell_splitter splitter_;
-    columns cols_;
+    std::optional<csv_rows> rows_;  // once the header is read
     std::size_t header_line_ = 0;
-    std::string first_key_;  // the first row under a commented header, read with it
-    bool first_key_pending_ = false;
+    std::string first_key_;           // the first row under a commented header, read with it
+    std::size_t first_key_line_ = 0;  // its line until next_line() gives it; then 0
 };
 
 }  // namespace

@@ -3,20 +3,27 @@
 #include <exception>
 #include <functional>
 #include <mutex>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "keyrot/io.hpp"
 
 namespace keyrot {
 namespace {
 
-/// Parses keys on a thread of its own, batches ahead of the caller, so that
+/// Parses keys on threads of their own, batches ahead of the caller, so that
 /// reading a long input overlaps with what the caller does with its keys.
-/// The first keys are read on the caller's thread: a small input never
-/// starts the thread, nor one where worth_it() then says no. What the inner
-/// reader throws comes out of next() after the keys before it, as it would
-/// without the thread.
+/// Where the inner reader has a line parser, two threads take turns: each
+/// copies the next batch's lines under a lock, in order, then parses them
+/// while the other copies; otherwise one thread reads the keys. The first
+/// keys are read on the caller's thread: a small input never starts the
+/// threads, nor one where worth_it() then says no. What the inner reader
+/// throws comes out of next() after the keys before it, as it would
+/// without the threads.
 class read_ahead_reader final : public key_reader {
 public:
     read_ahead_reader(std::unique_ptr<key_reader> inner, std::function<bool()> worth_it)
@@ -24,31 +31,29 @@ public:
     read_ahead_reader(const read_ahead_reader&) = delete;
     read_ahead_reader& operator=(const read_ahead_reader&) = delete;
     ~read_ahead_reader() override {
-        if (!thread_.joinable()) return;
         {
             const std::lock_guard lock(mutex_);
             stopping_ = true;
             changed_.notify_all();
         }
-        thread_.join();
+        for (auto& t : threads_) t.join();
     }
 
     bool next(std::string& track, raw_key& k) override {
-        if (!thread_.joinable()) {
+        if (threads_.empty()) {
             if (inline_keys_ < inline_limit || !worth_it_) {
                 ++inline_keys_;
                 return inner_->next(track, k);
             }
             if (!std::exchange(worth_it_, nullptr)()) return inner_->next(track, k);
-            thread_ = std::thread([this] { produce(); });
+            start();
         }
-        if (at_ == current_.keys.size()) {
+        while (at_ == current_.keys.size()) {  // (a batch may have no keys: blank lines, comments)
             if (current_.last) {
                 if (current_.failure) std::rethrow_exception(current_.failure);
                 return false;
             }
             take();
-            if (at_ == current_.keys.size()) return next(track, k);  // an empty last batch
         }
         auto& [name, key] = current_.keys[at_++];
         track.swap(name);  // the batch keeps the caller's string, to be written over
@@ -56,46 +61,116 @@ public:
         return true;
     }
     // Both are settled before the first key comes out (a CSV header, the
-    // first NDJSON line) and stay so: safe to ask while the thread reads.
+    // first NDJSON line) and stay so: safe to ask while the threads read.
     bool named() const override { return inner_->named(); }
     location start() const override { return inner_->start(); }
 
 private:
-    static constexpr std::size_t inline_limit = 1024, batch_keys = 1024, max_batches = 4;
+    static constexpr std::size_t inline_limit = 1024, batch_lines = 1024, max_batches = 4;
     struct batch {
         std::vector<std::pair<std::string, raw_key>> keys;
-        bool last = false;           // no keys after these
-        std::exception_ptr failure;  // what ended the input early, with last
+        std::string text;                                        // the lines, for a line parser
+        std::vector<std::pair<std::size_t, std::size_t>> lines;  // each one's end in text, and its number
+        bool last = false;                                       // no keys after these
+        std::exception_ptr failure;                              // what ended the input early, with last
     };
 
-    void produce() {
-        batch b;
-        while (!b.last) {
-            b.keys.resize(batch_keys);
-            std::size_t n = 0;
-            try {
-                while (n < batch_keys && inner_->next(b.keys[n].first, b.keys[n].second)) ++n;
-                b.last = n < batch_keys;
-            } catch (...) {
-                b.last = true;
-                b.failure = std::current_exception();
-            }
-            b.keys.resize(n);
-            std::unique_lock lock(mutex_);
-            changed_.wait(lock, [this] { return full_.size() < max_batches || stopping_; });
-            if (stopping_) return;
-            full_.push_back(std::move(b));
-            changed_.notify_all();
-            b = empty_.empty() ? batch{} : std::move(empty_.front());
-            if (!empty_.empty()) empty_.pop_front();
+    void start() {
+        if (auto first = inner_->parser()) {
+            parsers_.push_back(std::move(first));
+            parsers_.push_back(inner_->parser());
+            for (auto& p : parsers_) threads_.emplace_back([this, parser = p.get()] { work(parser); });
+        } else {
+            threads_.emplace_back([this] { work(nullptr); });
         }
+    }
+
+    /// Batch after batch: with a parser, its lines copied in turn and parsed
+    /// apart; without, its keys read in turn.
+    void work(line_parser* parser) {
+        for (;;) {
+            batch b;
+            std::size_t number = 0;
+            {
+                const std::lock_guard turn(reading_);
+                {
+                    std::unique_lock lock(mutex_);
+                    changed_.wait(lock, [this] { return stopping_ || ended_ || numbered_ < taken_ + max_batches; });
+                    if (stopping_ || ended_) return;
+                    number = numbered_++;
+                    if (!spare_.empty()) b = std::move(spare_.back()), spare_.pop_back();
+                }
+                if (parser) copy_lines(b);
+                else read_keys(b);
+                if (b.last) end();
+            }
+            if (parser) parse(b, *parser);
+            const std::lock_guard lock(mutex_);
+            if (b.last) ended_ = true;  // a parse error: no batches after this one
+            const std::size_t at = number - taken_;
+            if (ready_.size() <= at) ready_.resize(at + 1);
+            ready_[at] = std::move(b);
+            changed_.notify_all();
+        }
+    }
+    void end() {
+        const std::lock_guard lock(mutex_);
+        ended_ = true;
+    }
+    void copy_lines(batch& b) {
+        b.text.clear();
+        b.lines.clear();
+        b.last = false;
+        b.failure = nullptr;
+        try {
+            std::string_view line;
+            std::size_t line_no = 0;
+            while (b.lines.size() < batch_lines && inner_->next_line(line, line_no)) {
+                b.text += line;
+                b.lines.emplace_back(b.text.size(), line_no);
+            }
+            b.last = b.lines.size() < batch_lines;
+        } catch (...) {
+            b.last = true;
+            b.failure = std::current_exception();
+        }
+    }
+    static void parse(batch& b, line_parser& parser) {
+        b.keys.resize(b.lines.size());
+        std::size_t n = 0, begin = 0;
+        try {
+            for (const auto& [end, line_no] : b.lines) {
+                const std::string_view line(b.text.data() + begin, end - begin);
+                begin = end;
+                if (parser.parse(line, line_no, b.keys[n].first, b.keys[n].second)) ++n;
+            }
+        } catch (...) {  // the keys before it still go out
+            b.last = true;
+            b.failure = std::current_exception();
+        }
+        b.keys.resize(n);
+    }
+    void read_keys(batch& b) {
+        b.keys.resize(batch_lines);
+        b.last = false;
+        b.failure = nullptr;
+        std::size_t n = 0;
+        try {
+            while (n < batch_lines && inner_->next(b.keys[n].first, b.keys[n].second)) ++n;
+            b.last = n < batch_lines;
+        } catch (...) {
+            b.last = true;
+            b.failure = std::current_exception();
+        }
+        b.keys.resize(n);
     }
     void take() {
         std::unique_lock lock(mutex_);
-        changed_.wait(lock, [this] { return !full_.empty(); });
-        empty_.push_back(std::move(current_));
-        current_ = std::move(full_.front());
-        full_.pop_front();
+        changed_.wait(lock, [this] { return !ready_.empty() && ready_.front(); });
+        spare_.push_back(std::move(current_));
+        current_ = std::move(*ready_.front());
+        ready_.pop_front();
+        ++taken_;
         at_ = 0;
         changed_.notify_all();
     }
@@ -105,11 +180,15 @@ private:
     std::size_t inline_keys_ = 0;
     batch current_;  // the caller's
     std::size_t at_ = 0;
+    std::vector<std::unique_ptr<line_parser>> parsers_;  // one to a thread
+    std::mutex reading_;                                 // inner_'s turn: batches are numbered and read in order
     std::mutex mutex_;
     std::condition_variable changed_;
-    std::deque<batch> full_, empty_;  // under mutex_
-    bool stopping_ = false;           // under mutex_
-    std::thread thread_;
+    std::deque<std::optional<batch>> ready_;  // under mutex_: batches taken_, taken_ + 1, ... as they come
+    std::vector<batch> spare_;                // under mutex_: taken batches, their memory for new ones
+    std::size_t numbered_ = 0, taken_ = 0;    // under mutex_: batches begun, batches the caller took
+    bool ended_ = false, stopping_ = false;   // under mutex_
+    std::vector<std::thread> threads_;
 };
 
 }  // namespace

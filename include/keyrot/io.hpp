@@ -40,6 +40,16 @@ struct raw_document {
 /// Throws input_error for a track name with control characters.
 void check_track_name(const std::string& name, const std::string& where);
 
+/// The keys on the lines of a key_reader whose keys each take one line
+/// (CSV), parsed apart from each other: one parser to a thread.
+class line_parser {
+public:
+    virtual ~line_parser() = default;
+    /// The key on line `line_no`, and the name of its track; false for a line
+    /// with none (blank, a comment). Throws input_error as key_reader::next.
+    virtual bool parse(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) = 0;
+};
+
 /// Keys one at a time from a line-based document (CSV, NDJSON), in file
 /// order, so that a long track needs no more memory than a few keys.
 class key_reader {
@@ -48,6 +58,12 @@ public:
     /// The next key and the name of its track ("" without tracks); false at
     /// the end. Throws input_error for a malformed line.
     virtual bool next(std::string& track, raw_key& k) = 0;
+    /// Where each key takes one line: a parser for the lines of
+    /// next_line(), which then stands in for next(). Otherwise none.
+    virtual std::unique_ptr<line_parser> parser() const { return nullptr; }
+    /// With a parser(): the next line as it is (valid until the next call)
+    /// and its number; false at the end.
+    virtual bool next_line(std::string_view& /*line*/, std::size_t& /*line_no*/) { return false; }
     /// The input names its tracks (a track column, "track" fields).
     virtual bool named() const = 0;
     /// Where the keys start (the CSV header), for "no keys" errors.
@@ -57,9 +73,11 @@ public:
 /// For format::csv or format::ndjson. Warnings (unknown columns) go to `warn`.
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn);
 
-/// `reader`'s keys, parsed on a thread of their own ahead of the caller once
+/// `reader`'s keys, parsed on threads of their own ahead of the caller once
 /// more than a thousand have come and `worth_it()` (asked then, on the
-/// caller's thread) says so. The caller must not use the reader's stream.
+/// caller's thread) says so: on two, a batch of lines each in turn, where
+/// the reader has a parser(), else on one. The caller must not use the
+/// reader's stream.
 std::unique_ptr<key_reader> read_ahead(std::unique_ptr<key_reader> reader, std::function<bool()> worth_it);
 
 /// A whole document, keys grouped into tracks by name in order of first
