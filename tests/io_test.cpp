@@ -110,7 +110,7 @@ TEST_CASE("CSV errors name the line and what was expected") {
     CHECK(error_of(",time,qw,qx,qy,qz,QW\n", format::csv) == "in:1: column 'qw' appears twice: expected each column once");
     CHECK(error_of("qw,qx,qy,qz\n", format::csv) == "in:1: no time column: expected a 'time' or 'frame' column");
     CHECK(error_of("time\tqw\tqx\tqy\tqz\n", format::csv) ==
-          "in:1: expected commas between the columns, got 'time\tqw\tqx\tqy\tqz'");
+          "in:1: expected commas between the columns, got 'time\\x09qw\\x09qx\\x09qy\\x09qz'");
     CHECK(error_of("time,foo\n", format::csv).find("in:1: no rotation columns") == 0);
     CHECK(error_of("", format::csv) == "in: empty input: expected a CSV header and keys");
     CHECK(error_of("# c\ntime,qw,qx,qy,qz\n", format::csv) == "in:2: no keys: expected at least one key");
@@ -223,7 +223,7 @@ TEST_CASE("CSV: rows the fast path leaves to cell by cell reading") {
     CHECK(read(named + "# hip,0,1,0,0,0\nhip,0,1,0,0,0\n", format::csv).tracks.at(0).keys.at(0).at.line == 3);
     const auto track_error = [&](std::string_view row) { return error_of(named + std::string(row), format::csv); };
     CHECK(track_error(" ,0,1,0,0,0") == "in:2: column 'track': expected a track name, got an empty cell");
-    CHECK(track_error("a\tb,0,1,0,0,0") == "in:2: track name 'a\tb' has control characters: expected printable text");
+    CHECK(track_error("a\tb,0,1,0,0,0") == "in:2: track name 'a\\x09b' has control characters: expected printable text");
     CHECK(track_error("a\xFF,0,1,0,0,0") == "in:2: invalid UTF-8: expected text");
     // An ignored column.
     std::ostringstream err;
@@ -231,6 +231,13 @@ TEST_CASE("CSV: rows the fast path leaves to cell by cell reading") {
     read_options o;
     o.source = "in";
     CHECK(read_document("time,qw,qx,qy,qz,note\n0,1,0,0,0,x\n", format::csv, o, warn).tracks[0].keys[0].values[0] == 1);
+}
+
+TEST_CASE("errors quote bad bytes as \\xNN, a NUL too (what() is a C string)") {
+    using namespace std::string_literals;
+    CHECK(std::string(error("a\0b\x01\xFF \xC3\xBC"s).what()) == "a\\x00b\\x01\\xff \xC3\xBC");
+    CHECK(error_of("time,qw,qx,qy,qz\n0,1,0,0,0\0\n"s, format::csv) ==
+          "in:2: column 'qz': expected a finite number, got '0\\x00'");
 }
 
 TEST_CASE("CSV: numpy.savetxt's commented header, pandas' unnamed index column") {

@@ -1,13 +1,23 @@
 #pragma once
 // keyrot's exceptions. All are caught once, at the top, and printed as one
 // line "keyrot: <what>" with exit status 2.
+#include <mutex>
+#include <ostream>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace keyrot {
 
+/// `text` with control characters and bytes that are not UTF-8 written as
+/// \xNN, so that a message quoting bad input stays one readable line.
+std::string printable(std::string_view text);
+
 struct error : std::runtime_error {
-    using std::runtime_error::runtime_error;
+    /// The message made printable at once: what() is a C string, which a
+    /// NUL byte quoted from the input would cut short.
+    explicit error(const std::string& message) : std::runtime_error(printable(message)) {}
 };
 
 /// A bad command line.
@@ -21,19 +31,6 @@ struct input_error : error {
     input_error(const std::string& where, const std::string& message)
         : error(where + ": " + message) {}
 };
-
-}  // namespace keyrot
-
-#include <mutex>
-#include <ostream>
-#include <set>
-#include <string_view>
-
-namespace keyrot {
-
-/// `text` with control characters and bytes that are not UTF-8 written as
-/// \xNN, so that a message quoting bad input stays one readable line.
-std::string printable(std::string_view text);
 
 /// Prints "keyrot: <message>" as one printable line.
 void print_error(std::ostream& err, std::string_view message);
