@@ -100,28 +100,28 @@ private:
                     number = numbered_++;
                     if (!spare_.empty()) b = std::move(spare_.back()), spare_.pop_back();
                 }
+                b.last = false;
+                b.failure = nullptr;
                 if (parser) copy_lines(b);
                 else read_keys(b);
-                if (b.last) end();
             }
             if (parser) parse(b, *parser);
             const std::lock_guard lock(mutex_);
-            if (b.last) ended_ = true;  // a parse error: no batches after this one
+            if (b.last) ended_ = true;  // the end, or an error: no batches after this one
             const std::size_t at = number - taken_;
             if (ready_.size() <= at) ready_.resize(at + 1);
             ready_[at] = std::move(b);
             changed_.notify_all();
         }
     }
-    void end() {
-        const std::lock_guard lock(mutex_);
-        ended_ = true;
+    /// In a catch block: what was thrown ends the input after b's keys.
+    static void failed(batch& b) {
+        b.last = true;
+        b.failure = std::current_exception();
     }
     void copy_lines(batch& b) {
         b.text.clear();
         b.lines.clear();
-        b.last = false;
-        b.failure = nullptr;
         try {
             std::string_view line;
             std::size_t line_no = 0;
@@ -131,8 +131,7 @@ private:
             }
             b.last = b.lines.size() < batch_lines;
         } catch (...) {
-            b.last = true;
-            b.failure = std::current_exception();
+            failed(b);
         }
     }
     static void parse(batch& b, line_parser& parser) {
@@ -145,22 +144,18 @@ private:
                 if (parser.parse(line, line_no, b.keys[n].first, b.keys[n].second)) ++n;
             }
         } catch (...) {  // the keys before it still go out
-            b.last = true;
-            b.failure = std::current_exception();
+            failed(b);
         }
         b.keys.resize(n);
     }
     void read_keys(batch& b) {
         b.keys.resize(batch_lines);
-        b.last = false;
-        b.failure = nullptr;
         std::size_t n = 0;
         try {
             while (n < batch_lines && inner_->next(b.keys[n].first, b.keys[n].second)) ++n;
             b.last = n < batch_lines;
         } catch (...) {
-            b.last = true;
-            b.failure = std::current_exception();
+            failed(b);
         }
         b.keys.resize(n);
     }
