@@ -327,34 +327,29 @@ namespace {
 /// work on a hostile line.
 constexpr std::size_t max_line_values = 128;
 
-class ndjson_reader final : public key_reader {
+/// The keys on NDJSON lines, each line apart from the others, once the
+/// first key has settled whether lines name their tracks: the reader's own
+/// parser, and copies of it on read_ahead's threads.
+class ndjson_lines final : public line_parser {
 public:
-    ndjson_reader(std::istream& in, const read_options& opts) : lines_(in), opts_(opts) {}
+    ndjson_lines(std::string source, quat_order order) : source_(std::move(source)), order_(order) {}
+    /// Whether lines have a "track"; none before the first key.
+    std::optional<bool> named() const noexcept { return named_; }
 
-    bool named() const override { return named_; }
-    location start() const override { return {}; }
-
-    bool next(std::string& track, raw_key& k) override {
-        std::string_view line;
-        do {
-            if (!lines_.next(line)) return false;
-        } while (trim(line).empty());
-        if (fast_.parse(line)) read(fast_.root(), track, k);
-        else read(dom_value(parse(line, opts_.source, lines_.number())), track, k);
+    bool parse(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) override {
+        if (trim(line).empty()) return false;
+        if (fast_.parse(line)) read(fast_.root(), line_no, track, k);
+        else read(dom_value(keyrot::parse(line, source_, line_no)), line_no, track, k);
         return true;
     }
 
 private:
     template <class Value>
-    void read(Value j, std::string& track, raw_key& k) {
-        const std::size_t line_no = lines_.number();
-        const auto where = [&] { return fmt::format("{}:{}", opts_.source, line_no); };
+    void read(Value j, std::size_t line_no, std::string& track, raw_key& k) {
+        const auto where = [&] { return fmt::format("{}:{}", source_, line_no); };
         const auto track_field = j.is_object() ? j.member("track") : std::nullopt;
-        if (line_no_first_ == 0) {
-            line_no_first_ = line_no;
-            named_ = track_field.has_value();
-        }
-        if (track_field.has_value() != named_)
+        if (!named_) named_ = track_field.has_value();
+        if (track_field.has_value() != *named_)
             throw input_error(where(), "some lines have a 'track' and some do not: expected all or none");
         track.clear();
         if (track_field) {
@@ -363,14 +358,47 @@ private:
             track = track_field->string();
             check_track_name(track, where());
         }
-        k = key_object_reader(j, opts_.source, location{line_no, {}}, opts_.order, true).read();
+        k = key_object_reader(j, source_, location{line_no, {}}, order_, true).read();
     }
 
-    line_reader lines_;
-    const read_options& opts_;
+    std::string source_;
+    quat_order order_;
+    std::optional<bool> named_;
     flat_json fast_{max_line_values};  // most lines; the rest, and all errors, by nlohmann-json
-    std::size_t line_no_first_ = 0;
-    bool named_ = false;
+};
+
+class ndjson_reader final : public key_reader {
+public:
+    ndjson_reader(std::istream& in, const read_options& opts) : lines_(in), keys_(opts.source, opts.order) {}
+
+    bool named() const override { return keys_.named().value_or(false); }
+    location start() const override { return {}; }
+
+    bool next(std::string& track, raw_key& k) override {
+        std::string_view line;
+        std::size_t line_no;
+        while (next_line(line, line_no))
+            if (keys_.parse(line, line_no, track, k)) return true;
+        return false;
+    }
+
+    bool next_line(std::string_view& line, std::size_t& line_no) override {
+        if (!lines_.next(line)) return false;
+        line_no = lines_.number();
+        return true;
+    }
+
+    /// Only once a key has said whether lines name their tracks: copies
+    /// that each settled it on their own lines could miss a line that
+    /// breaks the rule.
+    std::unique_ptr<line_parser> parser() const override {
+        if (!keys_.named()) return nullptr;
+        return std::make_unique<ndjson_lines>(keys_);
+    }
+
+private:
+    line_reader lines_;
+    ndjson_lines keys_;
 };
 
 }  // namespace

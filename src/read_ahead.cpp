@@ -17,12 +17,12 @@ namespace {
 
 /// Parses keys on threads of their own, batches ahead of the caller, so that
 /// reading a long input overlaps with what the caller does with its keys.
-/// Where the inner reader has a line parser, two threads take turns: each
-/// copies the next batch's lines under a lock, in order, then parses them
-/// while the other copies; otherwise one thread reads the keys. The first
-/// keys are read on the caller's thread: a small input never starts the
-/// threads, nor one where worth_it() then says no. What the inner reader
-/// throws comes out of next() after the keys before it, as it would
+/// Two threads take turns, each with a copy of the inner reader's line
+/// parser: each copies the next batch's lines under a lock, in order, then
+/// parses them while the other copies. The first keys are read on the
+/// caller's thread: a small input never starts the threads, nor one where
+/// worth_it() then says no, or whose reader has no parser. What the inner
+/// reader throws comes out of next() after the keys before it, as it would
 /// without the threads.
 class read_ahead_reader final : public key_reader {
 public:
@@ -45,8 +45,7 @@ public:
                 ++inline_keys_;
                 return inner_->next(track, k);
             }
-            if (!std::exchange(worth_it_, nullptr)()) return inner_->next(track, k);
-            start();
+            if (!std::exchange(worth_it_, nullptr)() || !start()) return inner_->next(track, k);
         }
         while (at_ == current_.keys.size()) {  // (a batch may have no keys: blank lines, comments)
             if (current_.last) {
@@ -69,25 +68,24 @@ private:
     static constexpr std::size_t inline_limit = 1024, batch_lines = 1024, max_batches = 4;
     struct batch {
         std::vector<std::pair<std::string, raw_key>> keys;
-        std::string text;                                        // the lines, for a line parser
+        std::string text;                                        // the lines
         std::vector<std::pair<std::size_t, std::size_t>> lines;  // each one's end in text, and its number
         bool last = false;                                       // no keys after these
         std::exception_ptr failure;                              // what ended the input early, with last
     };
 
-    void start() {
-        if (auto first = inner_->parser()) {
-            parsers_.push_back(std::move(first));
-            parsers_.push_back(inner_->parser());
-            for (auto& p : parsers_) threads_.emplace_back([this, parser = p.get()] { work(parser); });
-        } else {
-            threads_.emplace_back([this] { work(nullptr); });
-        }
+    /// False, and no threads, for a reader without a parser.
+    bool start() {
+        auto first = inner_->parser();
+        if (!first) return false;
+        parsers_.push_back(std::move(first));
+        parsers_.push_back(inner_->parser());
+        for (auto& p : parsers_) threads_.emplace_back([this, parser = p.get()] { work(*parser); });
+        return true;
     }
 
-    /// Batch after batch: with a parser, its lines copied in turn and parsed
-    /// apart; without, its keys read in turn.
-    void work(line_parser* parser) {
+    /// Batch after batch: its lines copied in turn, then parsed apart.
+    void work(line_parser& parser) {
         for (;;) {
             batch b;
             std::size_t number = 0;
@@ -102,10 +100,9 @@ private:
                 }
                 b.last = false;
                 b.failure = nullptr;
-                if (parser) copy_lines(b);
-                else read_keys(b);
+                copy_lines(b);
             }
-            if (parser) parse(b, *parser);
+            parse(b, parser);
             const std::lock_guard lock(mutex_);
             if (b.last) ended_ = true;  // the end, or an error: no batches after this one
             const std::size_t at = number - taken_;
@@ -144,17 +141,6 @@ private:
                 if (parser.parse(line, line_no, b.keys[n].first, b.keys[n].second)) ++n;
             }
         } catch (...) {  // the keys before it still go out
-            failed(b);
-        }
-        b.keys.resize(n);
-    }
-    void read_keys(batch& b) {
-        b.keys.resize(batch_lines);
-        std::size_t n = 0;
-        try {
-            while (n < batch_lines && inner_->next(b.keys[n].first, b.keys[n].second)) ++n;
-            b.last = n < batch_lines;
-        } catch (...) {
             failed(b);
         }
         b.keys.resize(n);

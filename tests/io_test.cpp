@@ -8,6 +8,7 @@
 #include <cstring>
 #include <random>
 #include <sstream>
+#include <thread>
 
 #include "helpers.hpp"
 #include "keyrot/flat_json.hpp"
@@ -495,7 +496,7 @@ std::string numbered_keys(std::size_t n, std::size_t bad_line = 0, format f = fo
 }  // namespace
 
 TEST_CASE("read_ahead: the same keys and errors as the reader it wraps, in order") {
-    // CSV is parsed on two threads, a batch each in turn; NDJSON on one.
+    // Both are parsed on two threads, a batch each in turn.
     for (const format f : {format::csv, format::ndjson}) {
         CAPTURE(f == format::csv);
         std::ostringstream err;
@@ -570,6 +571,38 @@ TEST_CASE("read_ahead: the same keys and errors as the reader it wraps, in order
         CHECK(asked == 2);
     }
 
+    // NDJSON's lines name their tracks all or none, as the first key says:
+    // a line that breaks the rule is found, and worded, as on the caller's
+    // thread, also first in a thread's first batch (lines 1025 and 2049,
+    // the keys before them read on the caller's thread).
+    for (const std::size_t change : std::initializer_list<std::size_t>{1025, 2049, 3000}) {
+        for (const bool named_first : {true, false}) {
+            CAPTURE(change);
+            CAPTURE(named_first);
+            std::string text;
+            for (std::size_t i = 0; i < 5000; ++i) {  // key i on line i + 1
+                const bool named = (i + 1 < change) == named_first;
+                text += fmt::format("{{{}\"time\": {}, \"quat\": [1, 0, 0, {}]}}\n", named ? "\"track\": \"a\", " : "", i, i);
+            }
+            std::ostringstream err;
+            warnings warn(err, "in");
+            read_options o;
+            o.source = "in";
+            const auto read = [&](bool ahead) {
+                std::istringstream in(text);
+                auto reader = make_key_reader(in, format::ndjson, o, warn);
+                if (ahead) reader = read_ahead(std::move(reader), [] { return true; });
+                return read_all(*reader);
+            };
+            const reading_result alone = read(false), ahead = read(true);
+            CHECK(alone.keys.size() == change - 1);
+            CHECK(alone.error ==
+                  fmt::format("in:{}: some lines have a 'track' and some do not: expected all or none", change));
+            CHECK(ahead.keys.size() == alone.keys.size());
+            CHECK(ahead.error == alone.error);
+        }
+    }
+
     // numpy's commented header: its first key is read with the header, and
     // comes out first.
     std::string numpy = "# time,qw,qx,qy,qz\n";
@@ -587,6 +620,44 @@ TEST_CASE("read_ahead: the same keys and errors as the reader it wraps, in order
         CHECK(all.keys[i].second.at.line == i + 2);
         CHECK(all.keys[i].second.values[3] == static_cast<double>(i));
     }
+}
+
+TEST_CASE("read_ahead: a reader without a line parser is read on the caller's thread") {
+    // NDJSON has a parser only once its first key has said whether lines
+    // name their tracks; read_ahead starts no threads without one.
+    std::ostringstream err;
+    warnings warn(err, "in");
+    read_options o;
+    std::istringstream in("\n{\"time\": 0, \"quat\": [1, 0, 0, 0]}\n");
+    const auto ndjson = make_key_reader(in, format::ndjson, o, warn);
+    CHECK(ndjson->parser() == nullptr);
+    std::string name;
+    raw_key k;
+    REQUIRE(ndjson->next(name, k));
+    CHECK(ndjson->parser() != nullptr);
+    CHECK_FALSE(ndjson->named());
+
+    struct counting_reader final : key_reader {
+        std::size_t count = 0;
+        bool elsewhere = false;  // next() called on another thread
+        std::thread::id caller = std::this_thread::get_id();
+        bool next(std::string&, raw_key& key) override {
+            elsewhere = elsewhere || std::this_thread::get_id() != caller;
+            key.time = static_cast<double>(count);
+            return count++ < 5000;
+        }
+        bool named() const override { return false; }
+        location start() const override { return {}; }
+    };
+    auto inner = std::make_unique<counting_reader>();
+    const counting_reader& counted = *inner;
+    int asked = 0;
+    const auto reader = read_ahead(std::move(inner), [&asked] { return ++asked > 0; });
+    const reading_result all = read_all(*reader);
+    REQUIRE(all.keys.size() == 5000);
+    CHECK(all.keys[4999].second.time == 4999);
+    CHECK(asked == 1);
+    CHECK_FALSE(counted.elsewhere);
 }
 
 TEST_CASE("writers: CSV, JSON and NDJSON tables") {

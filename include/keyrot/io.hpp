@@ -41,7 +41,7 @@ struct raw_document {
 void check_track_name(const std::string& name, const std::string& where);
 
 /// The keys on the lines of a key_reader whose keys each take one line
-/// (CSV), parsed apart from each other: one parser to a thread.
+/// (CSV, NDJSON), parsed apart from each other: one parser to a thread.
 class line_parser {
 public:
     virtual ~line_parser() = default;
@@ -59,7 +59,8 @@ public:
     /// the end. Throws input_error for a malformed line.
     virtual bool next(std::string& track, raw_key& k) = 0;
     /// Where each key takes one line: a parser for the lines of
-    /// next_line(), which then stands in for next(). Otherwise none.
+    /// next_line(), which then stands in for next(). Otherwise none, as
+    /// for NDJSON before its first key.
     virtual std::unique_ptr<line_parser> parser() const { return nullptr; }
     /// With a parser(): the next line as it is (valid until the next call)
     /// and its number; false at the end.
@@ -75,9 +76,9 @@ std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const re
 
 /// `reader`'s keys, parsed on threads of their own ahead of the caller once
 /// more than a thousand have come and `worth_it()` (asked then, on the
-/// caller's thread) says so: on two, a batch of lines each in turn, where
-/// the reader has a parser(), else on one. The caller must not use the
-/// reader's stream.
+/// caller's thread) says so: on two, a batch of lines each in turn, with
+/// copies of the reader's parser() (none: no threads). The caller must not
+/// use the reader's stream.
 std::unique_ptr<key_reader> read_ahead(std::unique_ptr<key_reader> reader, std::function<bool()> worth_it);
 
 /// A whole document, keys grouped into tracks by name in order of first
