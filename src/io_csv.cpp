@@ -294,13 +294,7 @@ public:
     bool named() const override { return rows_->cols().track.has_value(); }
     location start() const override { return {header_line_, {}}; }
 
-    bool next(std::string& track, raw_key& k) override {
-        std::string_view line;
-        std::size_t line_no;
-        while (next_line(line, line_no))
-            if (rows_->parse(line, line_no, track, k)) return true;
-        return false;
-    }
+    bool next(std::string& track, raw_key& k) override { return next_parsed(*rows_, track, k); }
 
     bool next_line(std::string_view& line, std::size_t& line_no) override {
         if (first_key_line_ != 0) {

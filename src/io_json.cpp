@@ -374,13 +374,7 @@ public:
     bool named() const override { return keys_.named().value_or(false); }
     location start() const override { return {}; }
 
-    bool next(std::string& track, raw_key& k) override {
-        std::string_view line;
-        std::size_t line_no;
-        while (next_line(line, line_no))
-            if (keys_.parse(line, line_no, track, k)) return true;
-        return false;
-    }
+    bool next(std::string& track, raw_key& k) override { return next_parsed(keys_, track, k); }
 
     bool next_line(std::string_view& line, std::size_t& line_no) override {
         if (!lines_.next(line)) return false;

@@ -69,6 +69,16 @@ public:
     virtual bool named() const = 0;
     /// Where the keys start (the CSV header), for "no keys" errors.
     virtual location start() const = 0;
+
+protected:
+    /// next() for a reader whose lines `parser` reads.
+    bool next_parsed(line_parser& parser, std::string& track, raw_key& k) {
+        std::string_view line;
+        std::size_t line_no = 0;
+        while (next_line(line, line_no))
+            if (parser.parse(line, line_no, track, k)) return true;
+        return false;
+    }
 };
 
 /// For format::csv or format::ndjson. Warnings (unknown columns) go to `warn`.
