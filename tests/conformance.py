@@ -40,6 +40,11 @@ def quat_wxyz(r):
     return np.array([w, x, y, z])
 
 
+def xyzw(q):
+    """The order scipy's from_quat takes, of a wxyz quaternion or array of them."""
+    return np.asarray(q)[..., [1, 2, 3, 0]]
+
+
 def qmul(a, b):
     w1, x1, y1, z1 = a
     w2, x2, y2, z2 = b
@@ -97,8 +102,8 @@ def reference_frames(keys, method, path, fps, euler_seq):
     eul = None
     if method == "euler":
         eul = [k["euler"] if k["euler"] is not None else
-               Rotation.from_quat(np.roll(k["q"], -1)).as_euler(euler_seq) for k in keys]
-    scipy_slerp = Slerp(times, Rotation.from_quat([np.roll(q, -1) for q in qs])) if len(keys) > 1 else None
+               Rotation.from_quat(xyzw(k["q"])).as_euler(euler_seq) for k in keys]
+    scipy_slerp = Slerp(times, Rotation.from_quat(xyzw(qs))) if len(keys) > 1 else None
     tkeys = [(k["time"], np.array(k["t"])) for k in keys if k["t"] is not None]
     out = []
     for f in range(first, last + 1):
@@ -151,10 +156,10 @@ def random_keys(rng, n, with_translation, spacing=(0.05, 0.6)):
         q /= np.linalg.norm(q)
         edge = rng.random()
         if keys and edge < 0.1:  # nearly the previous key
-            q = quat_wxyz(Rotation.from_quat(np.roll(keys[-1]["q"], -1)) * Rotation.from_rotvec(rng.normal(size=3) * 1e-7))
+            q = quat_wxyz(Rotation.from_quat(xyzw(keys[-1]["q"])) * Rotation.from_rotvec(rng.normal(size=3) * 1e-7))
         elif keys and edge < 0.2:  # nearly 180 degrees from the previous key
             axis = rng.normal(size=3)
-            q = quat_wxyz(Rotation.from_quat(np.roll(keys[-1]["q"], -1)) *
+            q = quat_wxyz(Rotation.from_quat(xyzw(keys[-1]["q"])) *
                           Rotation.from_rotvec(axis / np.linalg.norm(axis) * (math.pi - rng.choice([1e-3, 1e-6]))))
         keys.append({"time": float(t), "q": q, "t": list(rng.uniform(-2, 2, 3)) if with_translation and rng.random() < 0.7 else None})
     return keys
@@ -165,7 +170,7 @@ def encode(keys, rep, seq, degrees, rng):
     unit = (180 / math.pi) if degrees else 1.0
     rows = []
     for k in keys:
-        r = Rotation.from_quat(np.roll(k["q"], -1))
+        r = Rotation.from_quat(xyzw(k["q"]))
         k["euler"] = None
         if rep == "quat":
             scale = rng.choice([1.0, 1.0, 1.0005])  # some within the normalisation tolerance
@@ -409,9 +414,10 @@ def run_case(keyrot, rng, case):
         if command == "convert":
             want = [(k["time"], to_matrix_wxyz(k["q"] / np.linalg.norm(k["q"])), k["t"]) for k in keys]
         else:
-            want = [(t, m, tr) for _, t, m, tr in reference_frames(keys, method, path, fps, seq)]
-            if [f for f, _, _, _ in got] != [f for f, _, _, _ in reference_frames(keys, method, path, fps, seq)]:
+            reference = reference_frames(keys, method, path, fps, seq)
+            if [f for f, _, _, _ in got] != [f for f, _, _, _ in reference]:
                 return f"{desc}\ntrack {name}: frames differ"
+            want = [(t, m, tr) for _, t, m, tr in reference]
         if len(got) != len(want):
             return f"{desc}\ntrack {name}: {len(got)} rows, expected {len(want)}"
         for row, (t, m, tr) in zip(got, want):
