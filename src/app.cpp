@@ -1,5 +1,6 @@
 #include "keyrot/app.hpp"
 
+#include <map>
 #include <new>
 #include <ostream>
 
@@ -44,11 +45,41 @@ resample_options resampling(const options& o) {
     return r;
 }
 
+namespace {
+
+/// Line-based input, each key made as it is read, so that its raw values
+/// are never all held at once (they took more room than the keys), and
+/// parsed ahead on other threads as streamed input is. Errors come in line
+/// order, as in streaming.
+void load_lines(input& result, std::istream& in, const read_options& ro, warnings& warn) {
+    const auto reader = read_ahead(make_key_reader(in, result.fmt, ro, warn), [] { return true; });
+    std::map<std::string, std::size_t> index;
+    std::string name;
+    raw_key raw;
+    while (reader->next(name, raw)) {
+        key k = make_key(raw, ro.settings, warn);
+        const auto [it, added] = index.emplace(name, result.tracks.size());
+        if (added) result.tracks.push_back(track{name, ro.settings.euler, {}});
+        std::vector<key>& keys = result.tracks[it->second].keys;
+        if (!keys.empty()) check_order(keys.back(), k, result.source);
+        keys.push_back(std::move(k));
+    }
+    if (result.tracks.empty()) throw input_error(where(result.source, reader->start()), "no keys: expected at least one key");
+    result.named = reader->named();
+}
+
+}  // namespace
+
 input load(const options& o, const input_source& src, warnings& warn) {
     input result{src.source(), src.detect(o.from), false, {}};
     try {
         const auto stream = src.open();
-        const raw_document doc = read_document(*stream, result.fmt, reading(o, src), warn);
+        const read_options ro = reading(o, src);
+        if (result.fmt != format::json) {
+            load_lines(result, *stream, ro, warn);
+            return result;
+        }
+        const raw_document doc = read_document(*stream, result.fmt, ro, warn);
         result.named = doc.named;
         result.tracks.reserve(doc.tracks.size());
         for (const raw_track& raw : doc.tracks) result.tracks.push_back(make_track(raw, warn));
