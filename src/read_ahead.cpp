@@ -1,5 +1,5 @@
+#include <array>
 #include <condition_variable>
-#include <deque>
 #include <exception>
 #include <functional>
 #include <mutex>
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "keyrot/io.hpp"
+#include "thread_start.hpp"
 
 namespace keyrot {
 namespace {
@@ -74,14 +75,20 @@ private:
         std::exception_ptr failure;                              // what ended the input early, with last
     };
 
-    /// False, and no threads, for a reader without a parser.
+    /// False, and no threads, for a reader without a parser or where the
+    /// system refuses threads (one thread reads alone: it takes every turn).
     bool start() {
         auto first = inner_->parser();
         if (!first) return false;
         parsers_.push_back(std::move(first));
         parsers_.push_back(inner_->parser());
-        for (auto& p : parsers_) threads_.emplace_back([this, parser = p.get()] { work(*parser); });
-        return true;
+        threads_.reserve(parsers_.size());
+        for (auto& p : parsers_) {
+            std::thread t;
+            if (!try_start_thread(t, [this, parser = p.get()] { work(*parser); })) break;
+            threads_.push_back(std::move(t));
+        }
+        return !threads_.empty();
     }
 
     /// Batch after batch: its lines copied in turn, then parsed apart.
@@ -105,9 +112,7 @@ private:
             parse(b, parser);
             const std::lock_guard lock(mutex_);
             if (b.last) ended_ = true;  // the end, or an error: no batches after this one
-            const std::size_t at = number - taken_;
-            if (ready_.size() <= at) ready_.resize(at + 1);
-            ready_[at] = std::move(b);
+            ready_[number % max_batches] = std::move(b);
             changed_.notify_all();
         }
     }
@@ -132,9 +137,9 @@ private:
         }
     }
     static void parse(batch& b, line_parser& parser) {
-        b.keys.resize(b.lines.size());
         std::size_t n = 0, begin = 0;
         try {
+            b.keys.resize(b.lines.size());
             for (const auto& [end, line_no] : b.lines) {
                 const std::string_view line(b.text.data() + begin, end - begin);
                 begin = end;
@@ -147,10 +152,11 @@ private:
     }
     void take() {
         std::unique_lock lock(mutex_);
-        changed_.wait(lock, [this] { return !ready_.empty() && ready_.front(); });
+        std::optional<batch>& next = ready_[taken_ % max_batches];
+        changed_.wait(lock, [&] { return next.has_value(); });
         spare_.push_back(std::move(current_));
-        current_ = std::move(*ready_.front());
-        ready_.pop_front();
+        current_ = std::move(*next);
+        next.reset();
         ++taken_;
         at_ = 0;
         changed_.notify_all();
@@ -165,7 +171,11 @@ private:
     std::mutex reading_;                                 // inner_'s turn: batches are numbered and read in order
     std::mutex mutex_;
     std::condition_variable changed_;
-    std::deque<std::optional<batch>> ready_;  // under mutex_: batches taken_, taken_ + 1, ... as they come
+    // Under mutex_: batch n, once parsed, at n % max_batches until the caller
+    // takes it (batches begin fewer than max_batches ahead of the caller).
+    // Handing a batch on allocates nothing: it cannot fail where no one
+    // would hear of it.
+    std::array<std::optional<batch>, max_batches> ready_;
     std::vector<batch> spare_;                // under mutex_: taken batches, their memory for new ones
     std::size_t numbered_ = 0, taken_ = 0;    // under mutex_: batches begun, batches the caller took
     bool ended_ = false, stopping_ = false;   // under mutex_

@@ -18,6 +18,7 @@
 #include "keyrot/error.hpp"
 #include "keyrot/io.hpp"
 #include "keyrot/output.hpp"
+#include "thread_start.hpp"
 
 namespace keyrot::detail {
 
@@ -57,7 +58,10 @@ public:
         }
         std::swap(text, spare_);
         text.clear();
-        if (!writer_.joinable()) writer_ = std::thread([this] { write_spares(); });
+        if (!writer_.joinable() && (unthreaded_ || !try_start_thread(writer_, [this] { write_spares(); }))) {
+            unthreaded_ = true;  // written here, then
+            return write(spare_);
+        }
         const std::lock_guard lock(mutex_);
         spare_full_ = true;
         changed_.notify_all();
@@ -112,6 +116,7 @@ private:
     bool spare_full_ = false, stopping_ = false;  // under mutex_
     std::exception_ptr failure_;                  // under mutex_
     std::thread writer_;
+    bool unthreaded_ = false;  // the system refused writer_
 };
 
 /// Rows are formatted on other threads once the output is large (for small
@@ -174,16 +179,23 @@ private:
         std::thread thread;
     };
 
+    /// Starts the workers the system gives threads to: with none, every row
+    /// is formatted on this thread, as for a small output.
     void start() {
+        std::vector<std::unique_ptr<worker>> workers;
         for (unsigned i = 0; i < threads_; ++i) {
             auto w = std::make_unique<worker>();
             if (threads_ > 1) w->own = writer_.row_writer(w->text);
             if (i > 0 && !w->own) break;
-            workers_.push_back(std::move(w));
+            workers.push_back(std::move(w));
         }
         batch_.rows.reserve(batch_rows);
         if (current_) batch_.resumed = track_begin{0, current_->name, current_->translation};
-        for (auto& w : workers_) w->thread = std::thread([this, &w = *w] { consume(w); });
+        workers_.reserve(workers.size());
+        for (auto& w : workers) {
+            if (!try_start_thread(w->thread, [this, &w = *w] { consume(w); })) break;
+            workers_.push_back(std::move(w));
+        }
     }
     void hand_over() {
         std::unique_lock lock(mutex_);

@@ -17,6 +17,7 @@
 #include "commands.hpp"
 #include "keyrot/output.hpp"
 #include "row_pipeline.hpp"
+#include "thread_start.hpp"
 
 namespace keyrot::detail {
 namespace {
@@ -284,34 +285,40 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
                     std::ostream& err) {
     std::vector<std::string> messages(inputs.size());
     std::vector<int> statuses(inputs.size(), 0);
-    std::exception_ptr usage;  // a bad flag stops everything, as for one file
+    std::exception_ptr stop;  // a bad flag (or no memory left) stops everything, as for one file
     std::atomic<std::size_t> next{0}, done{0};
     std::mutex progress_mutex;
     const auto work = [&] {
         for (std::size_t i; (i = next++) < inputs.size();) {
-            std::ostringstream messages_of_file;
             try {
+                std::ostringstream messages_of_file;
                 statuses[i] = transform_one(o, inputs[i], in, out, messages_of_file);
+                messages[i] = messages_of_file.str();
+                const std::size_t finished = ++done;
+                if (o.progress) {
+                    const std::lock_guard lock(progress_mutex);
+                    err << fmt::format("\rkeyrot: {}/{} files", finished, inputs.size()) << std::flush;
+                }
             } catch (...) {
                 const std::lock_guard lock(progress_mutex);
-                if (!usage) usage = std::current_exception();
+                if (!stop) stop = std::current_exception();
                 next = inputs.size();
-            }
-            messages[i] = messages_of_file.str();
-            const std::size_t finished = ++done;
-            if (o.progress) {
-                const std::lock_guard lock(progress_mutex);
-                err << fmt::format("\rkeyrot: {}/{} files", finished, inputs.size()) << std::flush;
             }
         }
     };
     const unsigned jobs = o.jobs ? o.jobs : std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t threads = std::min<std::size_t>(jobs, inputs.size());
     std::vector<std::thread> workers;
-    for (unsigned j = 1; j < std::min<std::size_t>(jobs, inputs.size()); ++j) workers.emplace_back(work);
+    workers.reserve(threads);
+    for (std::size_t j = 1; j < threads; ++j) {
+        std::thread t;
+        if (!try_start_thread(t, work)) break;  // fewer jobs
+        workers.push_back(std::move(t));
+    }
     work();
     for (auto& w : workers) w.join();
     if (o.progress) err << '\n';
-    if (usage) std::rethrow_exception(usage);
+    if (stop) std::rethrow_exception(stop);
     int status = 0;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         err << messages[i];

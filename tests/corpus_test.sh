@@ -222,6 +222,58 @@ if (ulimit -v 200000 && "$keyrot" --version) >/dev/null 2>&1; then
     else
         fail "out of memory: target changed, or the batch's other file missing: $(ls -A "$work" "$work/batch")"
     fi
+
+    # keyrot's threads only make it faster. Where the address space runs
+    # short, the system refuses some of them (each takes 8 MB for its
+    # stack) or their memory: keyrot goes on without them, or says it is out
+    # of memory, and never aborts. From 10 to 100 MB, on two tracks one after
+    # another (streamed: formatting threads, keys parsed ahead) and
+    # interleaved (read whole): the whole output, or the one line. What went
+    # to standard output stays, as when a disk fills; with -o, nothing does.
+    awk 'BEGIN { print "track,time,qw,qx,qy,qz"
+                 for (i = 0; i < 6000; i++) for (j = 0; j < 2; j++)
+                     printf "j%d,%.17g,%.17g,0,0,%.17g\n", j, i / 10, cos(i / 7 + j), sin(i / 7 + j) }' > threads_interleaved.csv
+    { head -n 1 threads_interleaved.csv; grep '^j0,' threads_interleaved.csv; grep '^j1,' threads_interleaved.csv; } \
+        > threads_streamed.csv
+    for f in threads_streamed.csv threads_interleaved.csv; do
+        "$keyrot" resample "$f" >threads_whole.csv
+        for limit in $(seq 10000 5000 100000); do
+            rm -f threads_o.csv
+            (ulimit -v "$limit" && exec "$keyrot" resample "$f" >threads_stdout.csv 2>threads_stdout.err)
+            rc_stdout=$?
+            (ulimit -v "$limit" && exec "$keyrot" resample "$f" -o threads_o.csv 2>threads_o.err)
+            rc_o=$?
+            if { [[ $rc_stdout == 0 && ! -s threads_stdout.err ]] && cmp -s threads_stdout.csv threads_whole.csv ||
+                 [[ $rc_stdout == 2 && $(cat threads_stdout.err) == "keyrot: $f: out of memory" ]]; } &&
+               { [[ $rc_o == 0 && ! -s threads_o.err ]] && cmp -s threads_o.csv threads_whole.csv ||
+                 [[ $rc_o == 2 && $(cat threads_o.err) == "keyrot: $f: out of memory" && ! -e threads_o.csv ]]; }; then
+                passed=$((passed + 1))
+            else
+                fail "$f in $limit KB: status $rc_stdout [$(head -c 200 threads_stdout.err)], with -o $rc_o [$(head -c 200 threads_o.err)]"
+            fi
+        done
+    done
+    # And a batch on two jobs: each file written whole, or its line.
+    "$keyrot" resample threads_streamed.csv threads_interleaved.csv --output-dir threads_whole
+    for limit in $(seq 10000 5000 100000); do
+        rm -rf threads_batch
+        (ulimit -v "$limit" && exec "$keyrot" resample threads_streamed.csv threads_interleaved.csv \
+            --output-dir threads_batch --jobs 2 2>threads_batch.err)
+        rc=$?
+        batch_ok=$([[ $rc == 0 || $rc == 2 ]] && echo yes)
+        for f in threads_streamed.csv threads_interleaved.csv; do
+            if [[ -e threads_batch/$f ]]; then
+                cmp -s "threads_batch/$f" "threads_whole/$f" || batch_ok=
+            elif ! grep -qxF "keyrot: $f: out of memory" threads_batch.err; then
+                batch_ok=
+            fi
+        done
+        if [[ -n $batch_ok ]] && ! grep -vqE '^keyrot: threads_(streamed|interleaved).csv: out of memory$' threads_batch.err; then
+            passed=$((passed + 1))
+        else
+            fail "batch in $limit KB: status $rc [$(head -c 200 threads_batch.err)]"
+        fi
+    done
 fi
 rm -f long_line.csv long_line.json
 
