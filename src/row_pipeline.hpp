@@ -25,7 +25,8 @@ namespace keyrot::detail {
 /// Where output text goes: -o FILE (a temporary file renamed on success) or
 /// a stream, in chunks of about a megabyte or in the batches formatting
 /// threads put out. Each is written by a second thread, started with the
-/// first chunk and kept to the end, while the next one fills.
+/// first chunk and kept to the end, while the next one fills (by the
+/// caller, where the system refuses that thread).
 class chunked_output {
 public:
     chunked_output(const std::optional<std::string>& path, std::ostream& out) : out_(out) {
@@ -59,7 +60,7 @@ public:
         std::swap(text, spare_);
         text.clear();
         if (!writer_.joinable() && (unthreaded_ || !try_start_thread(writer_, [this] { write_spares(); }))) {
-            unthreaded_ = true;  // written here, then
+            unthreaded_ = true;  // no writing thread to be had: each text is written here
             return write(spare_);
         }
         const std::lock_guard lock(mutex_);
