@@ -246,10 +246,12 @@ if (ulimit -v 200000 && "$keyrot" --version) >/dev/null 2>&1; then
             if { [[ $rc_stdout == 0 && ! -s threads_stdout.err ]] && cmp -s threads_stdout.csv threads_whole.csv ||
                  [[ $rc_stdout == 2 && $(cat threads_stdout.err) == "keyrot: $f: out of memory" ]]; } &&
                { [[ $rc_o == 0 && ! -s threads_o.err ]] && cmp -s threads_o.csv threads_whole.csv ||
-                 [[ $rc_o == 2 && $(cat threads_o.err) == "keyrot: $f: out of memory" && ! -e threads_o.csv ]]; }; then
+                 [[ $rc_o == 2 && $(cat threads_o.err) == "keyrot: $f: out of memory" && ! -e threads_o.csv ]]; } &&
+               [[ -z $(find . -name '.threads_o.csv.keyrot-*') ]]; then
                 passed=$((passed + 1))
             else
-                fail "$f in $limit KB: status $rc_stdout [$(head -c 200 threads_stdout.err)], with -o $rc_o [$(head -c 200 threads_o.err)]"
+                fail "$f in $limit KB: status $rc_stdout [$(head -c 200 threads_stdout.err)], with -o $rc_o [$(head -c 200 threads_o.err)] $(find . -name '.threads_o.csv.keyrot-*')"
+                rm -f .threads_o.csv.keyrot-*
             fi
         done
     done
