@@ -155,21 +155,26 @@ done
 # Tracks that interleave (key by key, joint by joint) are read whole, their
 # keys parsed ahead on other threads after the first 1024 as streamed input
 # is: the output must be that of the same tracks one after another, which
-# streams. 3 tracks of 1500 keys, each turning about its own axis.
+# streams. 3 tracks of 1500 keys, each turning about its own axis, in CSV
+# and in NDJSON.
 awk 'BEGIN { print "track,time,qw,qx,qy,qz"
              for (i = 0; i < 1500; i++) for (j = 0; j < 3; j++)
                  printf "j%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", j, i / 30, cos(i / 7 + j),
                      (j == 0) * sin(i / 7 + j), (j == 1) * sin(i / 7 + j), (j == 2) * sin(i / 7 + j) }' \
     > interleaved_long.csv
 { head -n 1 interleaved_long.csv; for j in 0 1 2; do grep "^j$j," interleaved_long.csv; done; } > one_after_another.csv
-for out in csv ndjson; do
-    "$keyrot" resample interleaved_long.csv --to $out >interleaved.out 2>&1
-    "$keyrot" resample one_after_another.csv --to $out >one_after_another.out 2>&1
-    if [[ $(wc -l <interleaved.out) -gt 3000 ]] && cmp -s interleaved.out one_after_another.out; then
-        passed=$((passed + 1))
-    else
-        fail "interleaved tracks to $out: not the output of the same tracks one after another"
-    fi
+awk -F, 'NR > 1 { printf "{\"track\": \"%s\", \"time\": %s, \"quat\": [%s, %s, %s, %s]}\n", $1, $2, $3, $4, $5, $6 }' \
+    interleaved_long.csv > interleaved_long.ndjson
+for from in csv ndjson; do
+    for out in csv ndjson; do
+        "$keyrot" resample interleaved_long.$from --to $out >interleaved.out 2>&1
+        "$keyrot" resample one_after_another.csv --to $out >one_after_another.out 2>&1
+        if [[ $(wc -l <interleaved.out) -gt 3000 ]] && cmp -s interleaved.out one_after_another.out; then
+            passed=$((passed + 1))
+        else
+            fail "interleaved tracks from $from to $out: not the output of the same tracks one after another"
+        fi
+    done
 done
 
 # Formatted on several threads, batches must come out whole and in order:
