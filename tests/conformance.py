@@ -225,8 +225,19 @@ def json_rotation(rep, vals, order):
     return {"matrix": [vals[i * n:(i + 1) * n] for i in range(n)]}
 
 
-def write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps):
-    """tracks: {name: (keys, rows)}; returns text."""
+def key_rows(tracks, interleave):
+    """(name, key, values) of every key: track after track, or (interleave)
+    key i of each track in turn, as some motion-capture exports write them.
+    Either way the tracks first appear in their order."""
+    per_track = [[(name, k, vals) for k, vals in zip(keys, rows)] for name, (keys, rows) in tracks.items()]
+    if not interleave:
+        return [row for rows in per_track for row in rows]
+    return [rows[i] for i in range(max(map(len, per_track))) for rows in per_track if i < len(rows)]
+
+
+def write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps, interleave):
+    """tracks: {name: (keys, rows)}; returns text. `interleave`: CSV and
+    NDJSON keys in turns of the tracks (see key_rows)."""
     named = len(tracks) > 1
     def when(k):
         return {"frame": round(k["time"] * key_fps)} if by_frame else {"time": k["time"]}
@@ -236,12 +247,11 @@ def write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps):
         has_t = rep != "matrix4" and any(k["t"] is not None for keys, _ in tracks.values() for k in keys)
         cols += ["tx", "ty", "tz"] if has_t else []
         out.write(",".join(cols) + "\n")
-        for name, (keys, rows) in tracks.items():
-            for k, vals in zip(keys, rows):
-                cells = ([name] if named else []) + [repr(list(when(k).values())[0])] + [repr(v) for v in vals]
-                if has_t:
-                    cells += [repr(v) for v in k["t"]] if k["t"] is not None else ["", "", ""]
-                out.write(",".join(cells) + "\n")
+        for name, k, vals in key_rows(tracks, interleave):
+            cells = ([name] if named else []) + [repr(list(when(k).values())[0])] + [repr(v) for v in vals]
+            if has_t:
+                cells += [repr(v) for v in k["t"]] if k["t"] is not None else ["", "", ""]
+            out.write(",".join(cells) + "\n")
         return out.getvalue()
     def key_obj(k, vals):
         o = dict(when(k))
@@ -251,12 +261,11 @@ def write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps):
         return o
     if fmt == "ndjson":
         lines = []
-        for name, (keys, rows) in tracks.items():
-            for k, vals in zip(keys, rows):
-                o = key_obj(k, vals)
-                if named:
-                    o["track"] = name
-                lines.append(json.dumps(o))
+        for name, k, vals in key_rows(tracks, interleave):
+            o = key_obj(k, vals)
+            if named:
+                o["track"] = name
+            lines.append(json.dumps(o))
         return "\n".join(lines) + "\n"
     doc = {"angles": "degrees" if degrees else "radians", "quat_order": order}
     if rep == "euler":
@@ -374,7 +383,9 @@ def run_case(keyrot, rng, case):
                 k["time"] = f / key_fps
         rows = encode(keys, rep, seq, degrees, rng)
         tracks["joint%d" % t] = (keys, rows)
-    text = write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps)
+    # Every other case's tracks interleave (without drawing on rng, so that
+    # the cases stay those of the same seed): keyrot then reads them whole.
+    text = write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps, interleave=case % 2 == 1)
     # The long way between nearly opposite quaternions (the same rotation
     # with the other sign) is a near-full turn about an axis that doubles pin
     # down only to about 1e-9: no double reference can check it to 1e-9.
