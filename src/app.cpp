@@ -2,9 +2,11 @@
 
 #include <map>
 #include <new>
+#include <optional>
 #include <ostream>
 
 #include "commands.hpp"
+#include "keyrot/io_json.hpp"
 #include "keyrot/output.hpp"
 
 namespace keyrot {
@@ -47,26 +49,47 @@ resample_options resampling(const options& o) {
 
 namespace {
 
-/// Line-based input, each key made as it is read, so that its raw values
-/// are never all held at once (they took more room than the keys), and
-/// parsed ahead on other threads as streamed input is. Errors come in line
-/// order, as in streaming.
+// Each key is made as it is read, so that the raw values are never all
+// held at once (they took more room than the keys), and errors come in the
+// input's order.
+
+/// Line-based input (its tracks may interleave), parsed ahead on other
+/// threads as streamed input is.
 void load_lines(input& result, std::istream& in, const read_options& ro, warnings& warn) {
     const auto reader = read_ahead(make_key_reader(in, result.fmt, ro, warn), [] { return true; });
     std::map<std::string, std::size_t> index;
+    std::vector<track_builder> tracks;
     std::string name;
     raw_key raw;
     while (reader->next(name, raw)) {
-        key k = make_key(raw, ro.settings, warn);
-        const auto [it, added] = index.emplace(name, result.tracks.size());
-        if (added) result.tracks.push_back(track{name, ro.settings.euler, {}});
-        std::vector<key>& keys = result.tracks[it->second].keys;
-        if (!keys.empty()) check_order(keys.back(), k, result.source);
-        keys.push_back(std::move(k));
+        const auto [it, added] = index.emplace(name, tracks.size());
+        if (added) tracks.emplace_back(name, raw.at, ro.settings);
+        tracks[it->second].add(raw, warn);
     }
-    if (result.tracks.empty()) throw input_error(where(result.source, reader->start()), "no keys: expected at least one key");
+    if (tracks.empty()) throw input_error(where(result.source, reader->start()), "no keys: expected at least one key");
+    for (track_builder& t : tracks) result.tracks.push_back(std::move(t).finish(warn));
     result.named = reader->named();
 }
+
+/// A JSON document's tracks, one after another.
+class json_tracks final : public raw_key_sink {
+public:
+    json_tracks(input& result, warnings& warn) : result_(result), warn_(warn) {}
+    void begin_track(raw_track header) override {
+        finish();
+        current_.emplace(std::move(header.name), std::move(header.at), std::move(header.settings));
+    }
+    void key(raw_key&& k) override { current_->add(k, warn_); }
+    void finish() {
+        if (current_) result_.tracks.push_back(std::move(*current_).finish(warn_));
+        current_.reset();
+    }
+
+private:
+    input& result_;
+    warnings& warn_;
+    std::optional<track_builder> current_;
+};
 
 }  // namespace
 
@@ -79,10 +102,9 @@ input load(const options& o, const input_source& src, warnings& warn) {
             load_lines(result, *stream, ro, warn);
             return result;
         }
-        const raw_document doc = read_document(*stream, result.fmt, ro, warn);
-        result.named = doc.named;
-        result.tracks.reserve(doc.tracks.size());
-        for (const raw_track& raw : doc.tracks) result.tracks.push_back(make_track(raw, warn));
+        json_tracks tracks(result, warn);
+        result.named = read_json(*stream, ro, tracks);
+        tracks.finish();
     } catch (const std::bad_alloc&) {  // the input is held whole: a big one can be too big
         throw error(src.source() + ": out of memory");
     }

@@ -254,8 +254,8 @@ std::string join_path(const std::string& prefix, const std::string& item) {
 
 /// A track object ({"keys": [...]}, {"frames": [...]}) or a bare array of keys.
 template <class Value>
-raw_track read_track(Value j, std::string name, const std::string& path, key_settings settings, quat_order order,
-                     const read_options& opts) {
+void read_track(Value j, std::string name, const std::string& path, key_settings settings, quat_order order,
+                const read_options& opts, raw_key_sink& sink) {
     const std::string where = fmt::format("{}: {}", opts.source, path.empty() ? "document" : path);
     apply_fields(j, settings, order, where);
     std::optional<Value> keys = j;
@@ -274,18 +274,17 @@ raw_track read_track(Value j, std::string name, const std::string& path, key_set
     if (!keys->is_array())
         throw input_error(where, fmt::format("'{}': expected an array of keys, got {}", field.empty() ? name : field,
                                              keys->type_name()));
-    raw_track t{std::move(name), location{0, keys_path.empty() ? "document" : keys_path}, settings, {}};
-    t.keys.reserve(keys->size());
+    sink.begin_track(raw_track{std::move(name), location{0, keys_path.empty() ? "document" : keys_path}, settings, {}});
+    std::size_t index = 0;
     keys->elements([&](Value key) {
-        const location at{0, fmt::format("{}[{}]", keys_path, t.keys.size())};
-        t.keys.push_back(key_object_reader(key, opts.source, at, order, frames_doc).read());
+        const location at{0, fmt::format("{}[{}]", keys_path, index++)};
+        sink.key(key_object_reader(key, opts.source, at, order, frames_doc).read());
     });
-    return t;
 }
 
+/// Returns whether the document names its tracks.
 template <class Value>
-raw_document read_json_value(Value j, const read_options& opts) {
-    raw_document doc;
+bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink) {
     key_settings settings = opts.settings;
     quat_order order = opts.order;
     const auto tracks = j.is_object() ? j.member("tracks") : std::nullopt;
@@ -295,30 +294,43 @@ raw_document read_json_value(Value j, const read_options& opts) {
         if (!tracks->is_object())
             throw input_error(where, fmt::format("'tracks': expected an object of named tracks, got {}", tracks->type_name()));
         if (tracks->size() == 0) throw input_error(where, "'tracks' is empty: expected at least one track");
-        doc.named = true;
         tracks->members([&](std::string_view name_view, Value value) {
             const std::string name(name_view);
             check_track_name(name, where);
-            doc.tracks.push_back(read_track(value, name, "tracks." + name, settings, order, opts));
+            read_track(value, name, "tracks." + name, settings, order, opts, sink);
         });
-    } else if (j.is_object() || j.is_array()) {
-        doc.tracks.push_back(read_track(j, "", "", settings, order, opts));
-    } else {
-        throw input_error(opts.source, fmt::format("expected a JSON object or array, got {}", j.type_name()));
+        return true;
     }
-    return doc;
+    if (!j.is_object() && !j.is_array())
+        throw input_error(opts.source, fmt::format("expected a JSON object or array, got {}", j.type_name()));
+    read_track(j, "", "", settings, order, opts, sink);
+    return false;
 }
+
+/// Builds the raw document.
+class raw_document_sink final : public raw_key_sink {
+public:
+    raw_document doc;
+    void begin_track(raw_track header) override { doc.tracks.push_back(std::move(header)); }
+    void key(raw_key&& k) override { doc.tracks.back().keys.push_back(std::move(k)); }
+};
 
 }  // namespace
 
-raw_document read_json(std::istream& in, const read_options& opts, warnings&) {
+bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink) {
     std::string text;
     text.reserve(static_cast<std::size_t>(std::max<std::streamsize>(0, in.rdbuf()->in_avail())));
     std::array<char, std::size_t{1} << 16> chunk;
     while (const auto got = in.rdbuf()->sgetn(chunk.data(), chunk.size())) text.append(chunk.data(), static_cast<std::size_t>(got));
     flat_json flat;
-    if (flat.parse(text)) return read_json_value(flat.root(), opts);
-    return read_json_value(dom_value(parse(text, opts.source, 1)), opts);
+    if (flat.parse(text)) return read_json_value(flat.root(), opts, sink);
+    return read_json_value(dom_value(parse(text, opts.source, 1)), opts, sink);
+}
+
+raw_document read_json(std::istream& in, const read_options& opts, warnings&) {
+    raw_document_sink sink;
+    sink.doc.named = read_json(in, opts, sink);
+    return std::move(sink.doc);
 }
 
 namespace {

@@ -115,19 +115,27 @@ void check_order(const key& previous, const key& next, const std::string& source
                                                               next.time, previous.time));
 }
 
+track_builder::track_builder(std::string name, location at, key_settings settings)
+    : at_(std::move(at)), settings_(std::move(settings)), track_{std::move(name), settings_.euler, {}} {}
+
+void track_builder::add(const raw_key& raw, warnings& warn) {
+    key k = make_key(raw, settings_, warn);
+    if (!track_.keys.empty()) check_order(track_.keys.back(), k, warn.source());
+    track_.keys.push_back(std::move(k));
+}
+
+track track_builder::finish(warnings& warn) && {
+    if (track_.keys.empty())
+        throw input_error(where(warn.source(), at_),
+                          track_.name.empty() ? std::string("no keys: expected at least one key")
+                                              : fmt::format("track '{}' has no keys: expected at least one key", track_.name));
+    return std::move(track_);
+}
+
 track make_track(const raw_track& raw, warnings& warn) {
-    track t{raw.name, raw.settings.euler, {}};
-    if (raw.keys.empty())
-        throw input_error(where(warn.source(), raw.at),
-                          raw.name.empty() ? std::string("no keys: expected at least one key")
-                                           : fmt::format("track '{}' has no keys: expected at least one key", raw.name));
-    t.keys.reserve(raw.keys.size());
-    for (const raw_key& rk : raw.keys) {
-        key k = make_key(rk, raw.settings, warn);
-        if (!t.keys.empty()) check_order(t.keys.back(), k, warn.source());
-        t.keys.push_back(std::move(k));
-    }
-    return t;
+    track_builder t(raw.name, raw.at, raw.settings);
+    for (const raw_key& k : raw.keys) t.add(k, warn);
+    return std::move(t).finish(warn);
 }
 
 std::string where(const std::string& source, const location& at) {

@@ -37,6 +37,16 @@ struct raw_document {
     bool named = false;             ///< the input had a track column / tracks object
 };
 
+/// Takes a JSON document's keys as they are read, track after track, so
+/// that its raw keys need not all be held at once.
+class raw_key_sink {
+public:
+    virtual ~raw_key_sink() = default;
+    /// Before each track's keys: its name, place and settings (no keys).
+    virtual void begin_track(raw_track header) = 0;
+    virtual void key(raw_key&& k) = 0;
+};
+
 /// Throws input_error for a track name with control characters.
 void check_track_name(const std::string& name, const std::string& where);
 

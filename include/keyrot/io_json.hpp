@@ -13,6 +13,9 @@ namespace keyrot {
 /// in its order. Throws input_error "<source>: tracks.hip.keys[3]: ..." for
 /// bad content, "<source>:<line>: ..." for malformed JSON.
 raw_document read_json(std::istream& in, const read_options& opts, warnings& warn);
+/// The same document's tracks and keys handed to `sink` in its order; returns
+/// whether it names its tracks.
+bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink);
 /// One line at a time. Throws input_error "<source>:<line>: ...".
 std::unique_ptr<key_reader> make_ndjson_reader(std::istream& in, const read_options& opts, warnings& warn);
 

@@ -79,4 +79,21 @@ void check_order(const key& previous, const key& next, const std::string& source
 /// A whole track: make_key for each key, check_order, at least one key.
 track make_track(const raw_track& raw, warnings& warn);
 
+/// make_track one key at a time, for a reader that hands keys over as it
+/// reads them, so that their raw values need not all be held at once.
+class track_builder {
+public:
+    /// `at` and `settings` as raw_track's.
+    track_builder(std::string name, location at, key_settings settings);
+    /// make_key, and check_order against the key before.
+    void add(const raw_key& raw, warnings& warn);
+    /// Throws input_error for a track without keys.
+    track finish(warnings& warn) &&;
+
+private:
+    location at_;
+    key_settings settings_;
+    track track_;
+};
+
 }  // namespace keyrot
