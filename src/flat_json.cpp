@@ -66,7 +66,7 @@ bool flat_json::parse_value(int depth) {
     switch (*p_) {
         case '{': return parse_container(depth, true);
         case '[': return parse_container(depth, false);
-        case '"': items_[index].type = kind::string; return parse_string(items_[index].text);
+        case '"': items_[index].type = kind::string, items_[index].text = {}; return parse_string(items_[index].text);
         case 't': items_[index].type = kind::boolean; return parse_literal("true");
         case 'f': items_[index].type = kind::boolean; return parse_literal("false");
         case 'n': return parse_literal("null");
@@ -78,6 +78,7 @@ bool flat_json::parse_container(int depth, bool object) {
     if (depth == max_depth) return false;
     const auto index = items_.size() - 1;
     items_[index].type = object ? kind::object : kind::array;
+    items_[index].size = 0;
     const char close = object ? '}' : ']';
     ++p_;
     skip_space();
@@ -87,7 +88,7 @@ bool flat_json::parse_container(int depth, bool object) {
     }
     std::uint32_t last = 0;
     while (true) {
-        span name;
+        span name{};
         if (object) {
             if (p_ == end_ || *p_ != '"' || !parse_string(name) || items_[index].size == max_members) return false;
             // Duplicate names: nlohmann-json keeps the last; leave it to it.

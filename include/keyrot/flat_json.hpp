@@ -20,16 +20,19 @@ public:
     enum class kind : std::uint8_t { null, boolean, number, string, array, object };
 
 private:
-    struct span {
-        std::uint32_t at = 0, size = 0;  // bytes of the text
+    struct span {  // trivial, for the union below
+        std::uint32_t at, size;  // bytes of the text
     };
     struct item {
         kind type = kind::null;
-        std::uint32_t size = 0;  // elements or members, which follow the item
         std::uint32_t next = 0;  // the parent's next element or member; 0: the last
-        double number = 0;
-        span text;  // a string's bytes
-        span name;  // a member's name
+        span name{};             // a member's name
+        union {                  // by type: 24 bytes an item, where a document has millions
+            double number = 0;
+            span text;           // a string's bytes
+            std::uint32_t size;  // an array's elements or an object's members, which follow the item
+        };
+        bool container() const noexcept { return type == kind::array || type == kind::object; }
     };
 
 public:
@@ -44,11 +47,11 @@ public:
         bool is_string() const noexcept { return type() == kind::string; }
         bool is_array() const noexcept { return type() == kind::array; }
         bool is_object() const noexcept { return type() == kind::object; }
-        double number() const noexcept { return item().number; }
+        double number() const noexcept { return is_number() ? item().number : 0; }
         /// The string's bytes (is_string()); they need no unescaping.
-        std::string_view string() const noexcept { return json_->bytes(item().text); }
+        std::string_view string() const noexcept { return is_string() ? json_->bytes(item().text) : std::string_view(); }
         /// Elements of an array, members of an object.
-        std::size_t size() const noexcept { return item().size; }
+        std::size_t size() const noexcept { return item().container() ? item().size : 0; }
         /// Element i < size() of an array (i steps: for the first few).
         value operator[](std::size_t i) const noexcept;
         /// The member of an object by name.
@@ -69,7 +72,7 @@ public:
         friend class flat_json;
         value(const flat_json& json, std::uint32_t index) : json_(&json), index_(index) {}
         const flat_json::item& item() const noexcept { return json_->items_[index_]; }
-        std::uint32_t first() const noexcept { return item().size == 0 ? 0 : index_ + 1; }
+        std::uint32_t first() const noexcept { return size() == 0 ? 0 : index_ + 1; }
 
         const flat_json* json_;
         std::uint32_t index_;
