@@ -32,4 +32,9 @@ void warnings::once(const std::string& kind, const std::string& message) {
     if (said_.insert(kind).second) print_error(err_, "warning: " + source_ + ": " + message);
 }
 
+void warnings::adopt(warnings& other) {
+    const std::scoped_lock lock(mutex_, other.mutex_);
+    said_.insert(other.said_.begin(), other.said_.end());
+}
+
 }  // namespace keyrot

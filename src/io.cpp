@@ -57,6 +57,7 @@ void check_track_name(const std::string& name, const std::string& where) {
 }
 
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn) {
+    if (f == format::json) return make_json_reader(in, opts);
     if (f == format::ndjson) return make_ndjson_reader(in, opts, warn);
     return make_csv_reader(in, opts, warn);
 }

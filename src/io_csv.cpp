@@ -253,7 +253,7 @@ private:
 
 class csv_reader final : public key_reader {
 public:
-    csv_reader(std::istream& in, const read_options& opts, warnings& warn) : lines_(in) {
+    csv_reader(std::istream& in, const read_options& opts, warnings& warn) : lines_(in), settings_(opts.settings) {
         // numpy.savetxt writes its header as a comment ("# time,qw,..."):
         // the last comment before the first row is the header when it names
         // a time column and the row does not.
@@ -293,6 +293,7 @@ public:
 
     bool named() const override { return rows_->cols().track.has_value(); }
     location start() const override { return {header_line_, {}}; }
+    const key_settings& settings() const override { return settings_; }
 
     bool next(std::string& track, raw_key& k) override { return next_parsed(*rows_, track, k); }
 
@@ -322,6 +323,7 @@ private:
     }
 
     line_reader lines_;
+    key_settings settings_;
     std::optional<csv_rows> rows_;  // once the header is read
     std::size_t header_line_ = 0;
     std::string first_key_;           // the first row under a commented header, read with it

@@ -64,6 +64,8 @@ public:
     // first NDJSON line) and stay so: safe to ask while the threads read.
     bool named() const override { return inner_->named(); }
     location start() const override { return inner_->start(); }
+    /// The inner reader's, which stay the same from key to key where it is read ahead.
+    const key_settings& settings() const override { return inner_->settings(); }
 
 private:
     static constexpr std::size_t inline_limit = 1024, batch_lines = 1024, max_batches = 4;

@@ -1,5 +1,6 @@
-// resample and convert: line-based input streams in two passes (validate,
-// then resample as the keys arrive); JSON and interleaved tracks are read whole.
+// resample and convert: input streams in two passes (validate, then resample
+// as the keys arrive); interleaved tracks, and JSON documents the streaming
+// reader declines, are read whole.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -86,7 +87,7 @@ document_facts facts_of(const input& doc) {
     return d;
 }
 
-/// Pass 1 over a line-based input: every key validated, the facts learnt.
+/// Pass 1 over a streamed input: every key validated, the facts learnt.
 /// Stops early (interleaved = true) when a track comes back after another
 /// one began: such input is then read whole.
 document_facts scan(const options& o, const input_source& src, format f, warnings& warn, bool& interleaved) {
@@ -99,23 +100,42 @@ document_facts scan(const options& o, const input_source& src, format f, warning
     raw_key raw;
     interleaved = false;
     while (reader->next(name, raw)) {
-        key k = make_key(raw, ro.settings, warn);
+        key k = make_key(raw, reader->settings(), warn);
         if (!d.tracks.empty() && d.tracks.back().name == name) {
             check_order(d.tracks.back().last, k, src.source());
         } else if (!seen.insert(name).second) {
             interleaved = true;
             return d;
         }
-        d.add(name, ro.settings.euler, std::move(k));
+        d.add(name, reader->settings().euler, std::move(k));
     }
     if (d.tracks.empty()) throw input_error(where(src.source(), reader->start()), "no keys: expected at least one key");
     d.named = reader->named();
     return d;
 }
 
+/// Pass 1 over a JSON document, where make_json_reader takes it. False when
+/// it does not, or finds an error: the document is then read whole, which
+/// says what is wrong as it always has. Its warnings are held back until it
+/// is known which.
+bool scan_json(const options& o, const input_source& src, document_facts& d, warnings& warn, std::ostream& err) {
+    std::ostringstream held;
+    warnings attempt(held, src.source());
+    bool interleaved = false;
+    try {
+        d = scan(o, src, format::json, attempt, interleaved);
+    } catch (const error&) {
+        return false;
+    }
+    if (interleaved) return false;
+    err << held.str();
+    warn.adopt(attempt);
+    return true;
+}
+
 sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
 
-/// Pass 2 over a line-based input whose tracks come one after another:
+/// Pass 2 over a streamed input whose tracks come one after another:
 /// each track is resampled (or converted) as its keys arrive. With `known`
 /// (pass 1's facts) the keys are known to be good; without (one pass), each
 /// track is taken to have translations if its first key has one, and the
@@ -138,7 +158,8 @@ std::optional<document_facts> stream_rows(const options& o, const input_source& 
     raw_key raw;
     while (reader->next(name, raw)) {
         ++keys;
-        key k = make_key(raw, ro.settings, warn);
+        const key_settings& settings = reader->settings();
+        key k = make_key(raw, settings, warn);
         const bool same_track = !seen.tracks.empty() && seen.tracks.back().name == name;
         if (!known && same_track) check_order(seen.tracks.back().last, k, src.source());
         if (!known && !same_track && !names.insert(name).second) return std::nullopt;
@@ -148,11 +169,11 @@ std::optional<document_facts> stream_rows(const options& o, const input_source& 
             if (resampler) resampler->finish();
             const bool translation = known ? known->tracks[seen.tracks.size()].translation : k.translation.has_value();
             rows.begin_track(name, translation);
-            if (o.cmd == command::resample) resampler.emplace(resampling(o), ro.settings.euler, translation, row);
+            if (o.cmd == command::resample) resampler.emplace(resampling(o), settings.euler, translation, row);
         }
         if (resampler) resampler->add(k);
         else row(key_row(k));
-        seen.add(name, ro.settings.euler, std::move(k));
+        seen.add(name, settings.euler, std::move(k));
     }
     if (resampler) resampler->finish();
     seen.named = reader->named();
@@ -174,7 +195,7 @@ void whole_rows(const options& o, const input& doc, row_pipeline& writer) {
     }
 }
 
-/// resample from line-based input into -o FILE in one pass. The writer
+/// resample from streamed input into -o FILE in one pass. The writer
 /// needs facts before the first row that pass 1 would gather (track names,
 /// translations); they are guessed from the first key instead. When a guess
 /// proves wrong or anything fails, the temporary file is dropped and false
@@ -193,7 +214,7 @@ bool resample_in_one_pass(const options& o, const input_source& src, format in_f
             std::string name;
             raw_key raw;
             if (!reader->next(name, raw)) return false;
-            guess.add(name, ro.settings.euler, make_key(raw, ro.settings, warn));
+            guess.add(name, reader->settings().euler, make_key(raw, reader->settings(), warn));
             guess.named = reader->named();
         }
         const write_options wopts = output_settings(o, guess.tracks.front().euler);
@@ -220,18 +241,19 @@ bool resample_in_one_pass(const options& o, const input_source& src, format in_f
 /// resample or convert one input into `target` (a file) or `out`.
 void transform(const options& o, const input_source& src, format in_fmt, format out_fmt,
                const std::optional<std::string>& target, std::ostream& out, std::ostream& err) {
-    if (target && replaced_on_commit(*target) && o.cmd == command::resample && in_fmt != format::json &&
+    if (target && replaced_on_commit(*target) && o.cmd == command::resample &&
         resample_in_one_pass(o, src, in_fmt, out_fmt, *target, out, err))
         return;
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or
     // in a pipe or device named by -o).
     warnings warn(err, src.source());
-    bool interleaved = in_fmt == format::json;
+    bool read_whole = false;
     document_facts d;
     std::optional<input> whole;
-    if (!interleaved) d = scan(o, src, in_fmt, warn, interleaved);
-    if (interleaved) {
+    if (in_fmt == format::json) read_whole = !scan_json(o, src, d, warn, err);
+    else d = scan(o, src, in_fmt, warn, read_whole);
+    if (read_whole) {
         whole = load(o, src, warn);
         d = facts_of(*whole);
     }

@@ -137,7 +137,7 @@ for f in dense_bad_cell.csv dense_zero_key.csv dense_bad_cell.ndjson; do
     done
 done
 for f in late_translation.csv second_track_translation.csv interleaved.csv warnings.csv dense.csv \
-    "$tests"/../data/*.csv "$tests"/good/*.csv "$tests"/good/*.ndjson; do
+    "$tests"/../data/* "$tests"/good/*; do
     for fps in 4 20000; do  # 20000: tens of thousands of rows, formatted on several threads
         "$keyrot" resample "$f" --fps $fps --to csv >two.out 2>two.err
         rc_two=$?
@@ -173,6 +173,44 @@ for from in csv ndjson; do
             passed=$((passed + 1))
         else
             fail "interleaved tracks from $from to $out: not the output of the same tracks one after another"
+        fi
+    done
+done
+
+# A JSON document whose settings come before its keys is streamed; with one
+# after them it is read whole (here "quat_order"). Both must give the same
+# output and messages: by name, on standard input, with -o, resampled and
+# converted. Two tracks of 1500 keys, the second with translations and one
+# key not of unit norm, which the warning names.
+awk 'BEGIN { printf "{\"rep\": \"quat\", \"quat_order\": \"xyzw\", \"tracks\": {"
+             for (j = 0; j < 2; j++) {
+                 printf "%s\"j%d\": {\"keys\": [\n", j ? "]}, " : "", j
+                 for (i = 0; i < 1500; i++) {
+                     n = i == 700 && j ? 2 : 1
+                     printf "%s{\"time\": %.17g, \"quat\": [%.17g, %.17g, 0, %.17g]%s}", i ? ",\n" : "", i / 24,
+                         n * cos(i / 7 + j) * cos(i / 11), n * cos(i / 7 + j) * sin(i / 11), n * sin(i / 7 + j),
+                         j ? sprintf(", \"translation\": [%d, 0, 1]", i) : ""
+                 }
+             }
+             print "]}}}" }' > track.json
+mkdir streamed read_whole
+mv track.json streamed
+sed 's/"quat_order": "xyzw", //; s/}}}$/}}, "quat_order": "xyzw"}/' streamed/track.json > read_whole/track.json
+for command in "resample --fps 50" "convert --rep axis-angle"; do
+    for way in name stdin -o; do
+        for dir in streamed read_whole; do
+            # shellcheck disable=SC2086
+            case $way in
+                name) (cd $dir && "$keyrot" $command track.json --to csv >out 2>err) ;;
+                stdin) (cd $dir && "$keyrot" $command --to ndjson <track.json >out 2>err) ;;
+                -o) (cd $dir && "$keyrot" $command track.json -o out.csv 2>err && mv out.csv out) ;;
+            esac
+        done
+        if [[ $(wc -l <streamed/out) -ge 3000 && $(cat streamed/err) == *"tracks.j1.keys[700]"* ]] &&
+            cmp -s streamed/out read_whole/out && cmp -s streamed/err read_whole/err; then
+            passed=$((passed + 1))
+        else
+            fail "JSON $command, $way: streamed and read whole differ [$(cat streamed/err)]"
         fi
     done
 done
@@ -260,6 +298,24 @@ if (ulimit -v 200000 && "$keyrot" --version) >/dev/null 2>&1; then
             fi
         done
     done
+    # A streamed JSON document needs a few keys' memory: 200,000 keys (17
+    # MB, which read whole take 130 MB) in 60 MB of address space.
+    awk 'BEGIN { printf "{\"keys\": [\n"
+                 for (i = 0; i < 200000; i++) printf "%s{\"time\": %.17g, \"quat\": [%.17g, 0, 0, %.17g]}", i ? ",\n" : "", i / 24, cos(i / 7), sin(i / 7)
+                 print "]}" }' > long_track.json
+    "$keyrot" resample long_track.json --to csv >long_track.csv
+    for out in "--to csv" "-o long_track_o.csv"; do
+        # shellcheck disable=SC2086
+        (ulimit -v 60000 && exec "$keyrot" resample long_track.json $out >long_track_limited.csv 2>long_track.err)
+        rc=$?
+        [[ -e long_track_o.csv ]] && mv long_track_o.csv long_track_limited.csv
+        if [[ $rc == 0 && ! -s long_track.err && $(wc -l <long_track.csv) == 200001 ]] && cmp -s long_track.csv long_track_limited.csv; then
+            passed=$((passed + 1))
+        else
+            fail "long_track.json $out in 60 MB: status $rc [$(head -c 200 long_track.err)]"
+        fi
+    done
+    rm -f long_track.json long_track.csv long_track_limited.csv
     # And a batch on two jobs: each file written whole, or its line.
     "$keyrot" resample threads_streamed.csv threads_interleaved.csv --output-dir threads_whole
     for limit in $(seq 10000 5000 100000); do

@@ -426,6 +426,103 @@ TEST_CASE("JSON: documents flat_json takes give the keys and messages nlohmann-j
     }
 }
 
+namespace {
+
+std::string key_line(const std::string& track, const key_settings& s, const raw_key& k) {
+    std::string line = fmt::format("{} {} {} {} {} {} {} {} [{}]", track, static_cast<int>(s.angles),
+                                   s.euler ? s.euler->name : "-", s.key_fps, k.at.path, k.time.value_or(-1),
+                                   k.frame.value_or(-1), static_cast<int>(k.kind), fmt::join(k.values, " "));
+    if (k.translation) line += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+    return line + '\n';
+}
+
+/// A JSON document's keys as read_json gives them, with their tracks'
+/// names and settings; or its error.
+std::string whole_keys(const std::string& text) {
+    try {
+        const raw_document doc = read(text, format::json);
+        std::string out = doc.named ? "named\n" : "";
+        for (const raw_track& t : doc.tracks)
+            for (const raw_key& k : t.keys) out += key_line(t.name, t.settings, k);
+        return out;
+    } catch (const input_error& e) {
+        return e.what();
+    }
+}
+
+/// The same from the streaming reader; "declined" where it throws.
+std::string streamed_keys(const std::string& text) {
+    std::istringstream in(text);
+    std::ostringstream err;
+    warnings warn(err, "in");
+    read_options o;
+    o.source = "in";
+    std::string lines, name;
+    raw_key k;
+    try {
+        const auto reader = make_key_reader(in, format::json, o, warn);
+        while (reader->next(name, k)) lines += key_line(name, reader->settings(), k);
+        return (reader->named() ? "named\n" : "") + lines;
+    } catch (const error&) {
+        return "declined";
+    }
+}
+
+}  // namespace
+
+TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to read whole") {
+    const std::string k = R"({"time": 0, "quat": [1, 0, 0, 0]})", k2 = R"({"time": 1, "quat": [0, 1, 0, 0]})";
+    // Settings before keys, as keyrot writes: streamed, in every shape.
+    for (const std::string& doc : std::vector<std::string>{
+             R"({"angles": "radians", "euler": "zyx", "quat_order": "xyzw", "keys": [
+                 {"time": 0, "quat": [0, 0, 1, 0]}, {"time": 1, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}},
+                 {"frame": 48, "axis": [0, 0, 1], "angle": 1.5, "translation": [1, 2, 3]}, {"time": 3, "rotvec": [0, 1, 0]},
+                 {"time": 4, "euler": [1, 2, 3]}, {"time": 5, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]})",
+             R"({"fps": 30, "method": "slerp", "rep": "quat", "frames": [{"frame": 3, "time": 0.1, "quat": [1, 0, 0, 0]},
+                 {"frame": 4, "time": -0, "quat": [1e-3, 1E+2, -0, 0.5]}]})",
+             R"({"angles": "radians", "tracks": {"zeta": {"keys": [{"time": 0, "axis": [0, 0, 1], "angle": 1}]},
+                 "alpha": {"angles": "degrees", "fps": 12, "frames": [{"frame": 1, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]},
+                 "mid": [{"time": 2, "matrix": [[1, 0, 0, 4], [0, 1, 0, 5], [0, 0, 1, 6], [0, 0, 0, 1]]}]}})",
+             "[" + k + ",\r\n\t" + k2 + "]", " \n[ " + k + " ] \n",
+             R"({"note": {"a": [1, 2, {"b": null}], "c": "x,]} "}, "keys": [)" + k + "], \"after\": [true, false, \"{[\"]}",
+             R"({"quat_order": "xyzw", "tracks": {"a": {"quat_order": "wxyz", "tracks": 5, "keys": [)" + k + "]}, \"b\": [" + k2 +
+                 "], \"\": [" + k + "]}}",
+         }) {
+        CAPTURE(doc);
+        const std::string streamed = streamed_keys(doc);
+        CHECK(streamed != "declined");
+        CHECK(streamed == whole_keys(doc));
+    }
+    // What read_json reads only once it has the whole text, reads otherwise
+    // than a walk in order would, or reports as an error: declined.
+    for (const std::string& doc : std::vector<std::string>{
+             R"({"keys": [)" + k + R"(], "angles": "radians"})", R"({"tracks": {"a": [)" + k + R"(]}, "fps": 12})",
+             R"({"tracks": {"a": {"keys": [)" + k + R"(], "euler": "xyz"}}})", R"({"keys": [)" + k + R"(], "tracks": {"a": [)" + k + "]}}",
+             R"({"tracks": {"a": [)" + k + R"(]}, "keys": [)" + k + "]}", R"({"keys": [)" + k + R"(], "frames": [)" + k + "]}",
+             R"({"keys": [)" + k + R"(], "keys": [)" + k + "]}", R"({"tracks": {"a": [)" + k + R"(], "a": [)" + k + "]}}",
+             R"({"keys": []})", R"({"tracks": {}})", R"({"tracks": {"a": {"fps": 2}}})", R"({"other": 1})", R"({"keys": 5})",
+             R"({"keys": [)" + k + "]} x", R"({"keys": [)" + k, R"({"keys": [)" + k + ",]}", R"({"keys": [)" + k + " " + k2 + "]}",
+             "\xEF\xBB\xBF[" + k + "]", R"({"note": "\u00e9", "keys": [)" + k + "]}", R"({"tracks": {"\u00e9": [)" + k + "]}}",
+             R"({"note": [[[[[[[[[[1]]]]]]]]]], "keys": [)" + k + "]}", R"({"keys": [{"time": 0, "quat": [1, 0, 0]}]})",
+             R"({"tracks": {"a\u0001": [)" + k + "]}}", "42", "\"keys\"", "", "[" + k + ", " + k2 + ", 7]",
+             "[" + k + "]\n" + std::string(1, '\0') + "x", "[" + k + "]" + std::string(1, '\0'),
+         }) {
+        CAPTURE(doc);
+        CHECK(streamed_keys(doc) == "declined");
+    }
+    // Read in blocks of 64 KB: a block ends in each place of a setting, and of a key.
+    std::string keys;
+    for (int i = 0; i < 1400; ++i)
+        keys += fmt::format("{}{{\"time\": {}, \"quat\": [{}, 0.25, -0.5, 1e-3]}}", i ? ",\n " : "", i, i * 0.1);
+    for (std::size_t pad = 65500; pad < 65560; ++pad) {
+        const std::string doc = "{" + std::string(pad, ' ') + R"("quat_order": "xyzw", "keys": [)" + keys + "]}";
+        CAPTURE(pad);
+        const std::string streamed = streamed_keys(doc);
+        CHECK(streamed.find("\n 0 - 24 keys[1399] 1399 -1 0 [") != std::string::npos);
+        CHECK(streamed == whole_keys(doc));
+    }
+}
+
 TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-json's reading gives") {
     // Each line twice: as written, which flat_json takes, and with a member
     // flat_json declines (an escaped string), which nlohmann-json reads.
@@ -648,6 +745,8 @@ TEST_CASE("read_ahead: a reader without a line parser is read on the caller's th
         }
         bool named() const override { return false; }
         location start() const override { return {}; }
+        const key_settings& settings() const override { return defaults; }
+        key_settings defaults;
     };
     auto inner = std::make_unique<counting_reader>();
     const counting_reader& counted = *inner;

@@ -79,6 +79,10 @@ public:
     virtual bool named() const = 0;
     /// Where the keys start (the CSV header), for "no keys" errors.
     virtual location start() const = 0;
+    /// The settings of the track of the key next() gave last: a JSON
+    /// document's own fields over the flags; for line-based input, the
+    /// flags' for every key.
+    virtual const key_settings& settings() const = 0;
 
 protected:
     /// next() for a reader whose lines `parser` reads.
@@ -91,7 +95,8 @@ protected:
     }
 };
 
-/// For format::csv or format::ndjson. Warnings (unknown columns) go to `warn`.
+/// For format::csv or format::ndjson, or format::json where the document
+/// allows (make_json_reader). Warnings (unknown columns) go to `warn`.
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn);
 
 /// `reader`'s keys, parsed on threads of their own ahead of the caller once

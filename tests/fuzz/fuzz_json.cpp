@@ -1,13 +1,46 @@
-// libFuzzer target: the JSON and NDJSON readers and key validation, and
-// flat_json against nlohmann-json.
+// libFuzzer target: the JSON and NDJSON readers and key validation,
+// flat_json against nlohmann-json, and the streaming JSON reader against
+// the whole document's.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <sstream>
+#include <string>
 
 #include "../json_same.hpp"
 #include "check.hpp"
 #include "keyrot/flat_json.hpp"
 #include "keyrot/io.hpp"
+
+namespace {
+
+/// A key with its track's name and settings, every number exactly.
+std::string describe(const std::string& track, const keyrot::key_settings& s, const keyrot::raw_key& k) {
+    const auto number = [](const std::optional<double>& v) { return v ? fmt::format("{}", *v) : "-"; };
+    std::string out = fmt::format("{} {} {} {} {} {} {} {} [{}]", track, static_cast<int>(s.angles),
+                                  s.euler ? s.euler->name : "-", s.key_fps, k.at.path, number(k.time),
+                                  number(k.frame), static_cast<int>(k.kind), fmt::join(k.values, " "));
+    if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+    return out + '\n';
+}
+
+/// The keys the streaming reader reads, and "declined" where it throws.
+std::string streamed(std::string_view text, const keyrot::read_options& opts, keyrot::warnings& warn) {
+    std::istringstream in{std::string(text)};
+    std::string out, name;
+    keyrot::raw_key k;
+    try {
+        const auto reader = keyrot::make_key_reader(in, keyrot::format::json, opts, warn);
+        while (reader->next(name, k)) out += describe(name, reader->settings(), k);
+        return (reader->named() ? "named\n" : "") + out;
+    } catch (const keyrot::error&) {
+        return "declined";
+    }
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     std::ostringstream err;
@@ -21,6 +54,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             for (const auto& raw : doc.tracks) keyrot::fuzz::check_track(keyrot::make_track(raw, warn));
         } catch (const keyrot::error&) {
         }
+    }
+    // What the streaming reader takes, read_json reads as the same keys.
+    if (const std::string keys = streamed(text, opts, warn); keys != "declined") {
+        std::string whole;
+        try {
+            const auto doc = keyrot::read_document(text, keyrot::format::json, opts, warn);
+            whole = doc.named ? "named\n" : "";
+            for (const auto& t : doc.tracks)
+                for (const auto& k : t.keys) whole += describe(t.name, t.settings, k);
+        } catch (const keyrot::error&) {
+            std::abort();
+        }
+        keyrot::fuzz::require(keys == whole);
     }
     // What flat_json takes, nlohmann-json must read as the same value.
     keyrot::flat_json flat;

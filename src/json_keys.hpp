@@ -1,0 +1,177 @@
+#pragma once
+// Internal to the JSON readers (src/io_json.cpp, src/json_stream.cpp): the
+// fields of a key object and a document's own settings, read from a
+// nlohmann-json value or a flat_json::value alike.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <concepts>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "keyrot/error.hpp"
+#include "keyrot/layout.hpp"
+#include "keyrot/track.hpp"
+
+namespace keyrot::detail {
+
+/// A key has a dozen values, a 4x4 matrix 21: this bounds flat_json's work
+/// on a hostile NDJSON line or key.
+constexpr std::size_t max_key_values = 128;
+
+/// Reads the fields of one key object: a dom_value or a flat_json::value.
+template <class Value>
+class key_object_reader {
+public:
+    key_object_reader(Value obj, const std::string& source, location at, quat_order order, bool frames_doc)
+        : obj_(obj), source_(source), at_(std::move(at)), order_(order), frames_doc_(frames_doc) {}
+
+    raw_key read() {
+        if (!obj_.is_object()) fail(fmt::format("expected a key object, got {}", obj_.type_name()));
+        raw_key k;
+        k.at = at_;
+        k.time = optional_number("time");
+        k.frame = optional_number("frame");
+        if (!k.time && !k.frame) fail("expected a 'time' or a 'frame'");
+        if (k.time && k.frame && !frames_doc_) fail("a key has both 'time' and 'frame': expected exactly one");
+
+        const auto quat = obj_.member("quat"), axis = obj_.member("axis"), rotvec = obj_.member("rotvec"),
+                   euler = obj_.member("euler"), matrix = obj_.member("matrix"), angle = obj_.member("angle");
+        const int rotations = !!quat + !!axis + !!rotvec + !!euler + !!matrix;
+        if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
+        if (rotations > 1) fail("more than one rotation: expected exactly one of 'quat', 'axis', 'rotvec', 'euler', 'matrix'");
+        if (angle && !axis) fail("'angle' without 'axis'");
+
+        if (quat) {
+            k.kind = rep::quat;
+            if (quat->is_object()) {
+                const char* names[] = {"w", "x", "y", "z"};
+                for (std::size_t i = 0; i < 4; ++i) {
+                    const auto v = quat->member(names[i]);
+                    if (!v) fail(fmt::format("'quat' object: missing '{}': expected w x y z", names[i]));
+                    k.values[i] = number(*v, [&] { return fmt::format("quat.{}", names[i]); });
+                }
+            } else {
+                const auto v = numbers(*quat, "quat", 4);
+                const auto wxyz = from_quat_order({v[0], v[1], v[2], v[3]}, order_);
+                std::copy(wxyz.begin(), wxyz.end(), k.values.begin());
+            }
+        } else if (axis) {
+            k.kind = rep::axis_angle;
+            if (!angle) fail("'axis' without 'angle'");
+            const auto v = numbers(*axis, "axis", 3);
+            std::copy_n(v.begin(), 3, k.values.begin());
+            k.values[3] = number(*angle, "angle");
+        } else if (rotvec) {
+            k.kind = rep::rotvec;
+            const auto v = numbers(*rotvec, "rotvec", 3);
+            std::copy_n(v.begin(), 3, k.values.begin());
+        } else if (euler) {
+            k.kind = rep::euler;
+            const auto v = numbers(*euler, "euler", 3);
+            std::copy_n(v.begin(), 3, k.values.begin());
+        } else {
+            read_matrix(*matrix, k);
+        }
+        if (const auto translation = obj_.member("translation")) {
+            const auto v = numbers(*translation, "translation", 3);
+            k.translation = vec3{v[0], v[1], v[2]};
+        }
+        return k;
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& message) const { throw input_error(where(source_, at_), message); }
+
+    /// Messages name the field: `field` is its name, or a callable that
+    /// spells the name out ("quat[2]"), called only when there is an error.
+    double number(Value j, const std::invocable auto& field) const {
+        if (!j.is_number())
+            fail(fmt::format("'{}': expected a number, got {}{}", field(), j.type_name(),
+                             j.is_string() ? fmt::format(" \"{}\"", j.string().substr(0, 40)) : ""));
+        const double v = j.number();
+        if (!std::isfinite(v)) fail(fmt::format("'{}': expected a finite number, got {}", field(), v));
+        return v;
+    }
+    double number(Value j, std::string_view field) const {
+        return number(j, [field] { return field; });
+    }
+
+    std::optional<double> optional_number(std::string_view field) const {
+        if (const auto j = obj_.member(field)) return number(*j, field);
+        return std::nullopt;
+    }
+
+    /// The n (at most 4) numbers of an array field, in the first n places.
+    std::array<double, 4> numbers(Value j, const std::invocable auto& field, std::size_t n) const {
+        if (!j.is_array() || j.size() != n)
+            fail(fmt::format("'{}': expected an array of {} numbers, got {}", field(), n,
+                             j.is_array() ? fmt::format("{} elements", j.size()) : std::string(j.type_name())));
+        std::array<double, 4> out{};
+        for (std::size_t i = 0; i < n; ++i) out[i] = number(j[i], [&] { return fmt::format("{}[{}]", field(), i); });
+        return out;
+    }
+    std::array<double, 4> numbers(Value j, std::string_view field, std::size_t n) const {
+        return numbers(j, [field] { return field; }, n);
+    }
+
+    void read_matrix(Value m, raw_key& k) const {
+        if (!m.is_array() || (m.size() != 3 && m.size() != 4))
+            fail(fmt::format("'matrix': expected 3 or 4 rows, got {}",
+                             m.is_array() ? fmt::format("{} rows", m.size()) : std::string(m.type_name())));
+        const std::size_t n = m.size();
+        k.kind = n == 4 ? rep::matrix4 : rep::matrix;
+        for (std::size_t r = 0; r < n; ++r) {
+            const auto row = numbers(m[r], [r] { return fmt::format("matrix[{}]", r); }, n);
+            std::copy_n(row.begin(), n, k.values.begin() + static_cast<std::ptrdiff_t>(r * n));
+        }
+    }
+
+    Value obj_;
+    const std::string& source_;
+    location at_;
+    quat_order order_;
+    bool frames_doc_;
+};
+
+/// Applies a document's own fields ("angles", "euler", "quat_order", "fps")
+/// over the settings it inherits.
+template <class Value>
+void apply_fields(Value obj, key_settings& s, quat_order& order, const std::string& where) {
+    if (!obj.is_object()) return;
+    auto text = [&](const char* field) -> std::optional<std::string> {
+        const auto v = obj.member(field);
+        if (!v) return std::nullopt;
+        if (!v->is_string()) throw input_error(where, fmt::format("'{}': expected a string, got {}", field, v->type_name()));
+        return std::string(v->string());
+    };
+    if (auto a = text("angles")) {
+        const auto u = parse_angle_unit(*a);
+        if (!u) throw input_error(where, fmt::format("'angles': expected \"degrees\" or \"radians\", got \"{}\"", *a));
+        s.angles = *u;
+    }
+    if (auto e = text("euler")) {
+        s.euler = parse_euler_seq(*e);
+        if (!s.euler)
+            throw input_error(where, fmt::format("'euler': expected a sequence like \"ZYX\" or \"xyz\", got \"{}\"", *e));
+    }
+    if (auto o = text("quat_order")) {
+        const auto q = parse_quat_order(*o);
+        if (!q) throw input_error(where, fmt::format("'quat_order': expected \"wxyz\" or \"xyzw\", got \"{}\"", *o));
+        order = *q;
+    }
+    if (const auto f = obj.member("fps")) {
+        if (!f->is_number() || !(f->number() > 0) || !std::isfinite(f->number()))
+            throw input_error(where, "'fps': expected a positive number");
+        s.key_fps = f->number();
+    }
+}
+
+inline std::string join_path(const std::string& prefix, const std::string& item) {
+    return prefix.empty() ? item : prefix + "." + item;
+}
+
+}  // namespace keyrot::detail

@@ -1,0 +1,295 @@
+// A JSON document's keys as they arrive, block by block, for resample and
+// convert: a long track in a few keys' memory, as CSV and NDJSON are read.
+// Only documents laid out as keyrot and most tools write them are taken;
+// for the rest the caller reads the document whole (read_json).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "json_keys.hpp"
+#include "keyrot/flat_json.hpp"
+#include "keyrot/io_json.hpp"
+
+namespace keyrot {
+namespace {
+
+[[noreturn]] void decline() { throw json_not_streamed(); }
+
+/// The document's text, read in blocks and consumed token by token: only
+/// the value being read (a key, a setting) is held, not what came before.
+class json_text {
+public:
+    explicit json_text(std::istream& in) : in_(in) {}
+
+    /// The next character that is not white space, not taken; 0 at the end
+    /// (and for a NUL byte, which is no JSON either: at_end() tells them apart).
+    char peek() {
+        for (;;) {
+            for (; at_ < buf_.size(); ++at_)
+                if (!is_space(buf_[at_])) return buf_[at_];
+            if (!fill()) return 0;
+        }
+    }
+    /// Nothing but white space is left.
+    bool at_end() {
+        peek();
+        return at_ == buf_.size();
+    }
+    /// Takes `c`, which must come next.
+    void take(char c) {
+        if (peek() != c) decline();
+        ++at_;
+    }
+    /// A string without escapes (member names, which need no unescaping), taken.
+    std::string string() {
+        take('"');
+        for (std::size_t i = at_;; ++i) {
+            if (i == buf_.size()) {
+                const std::size_t offset = i - at_;
+                if (!fill()) decline();
+                i = at_ + offset;
+            }
+            const auto c = static_cast<unsigned char>(buf_[i]);
+            if (c == '\\' || c < 0x20 || c >= 0x7f) decline();  // left to the whole reader
+            if (c == '"') {
+                std::string s = buf_.substr(at_, i - at_);
+                at_ = i + 1;
+                return s;
+            }
+        }
+    }
+    /// The text of the value that starts here, taken: a scalar, or an array
+    /// or object to its closing bracket. Valid until the next call.
+    std::string_view value() {
+        if (peek() == '{') {  // a key, most often: to its first '}', if it holds no other object
+            const auto* begin = buf_.data() + at_;
+            const auto* close = static_cast<const char*>(std::memchr(begin, '}', buf_.size() - at_));
+            if (close && std::count(begin, close, '{') == 1) return take_until(at_ + static_cast<std::size_t>(close - begin) + 1);
+        }
+        int depth = 0;
+        bool in_string = false;
+        for (std::size_t i = at_;;) {
+            // Most characters are digits, letters, signs and points: a look-up each.
+            while (i < buf_.size() && kind_of(buf_[i]) == kind::plain) ++i;
+            if (i == buf_.size()) {
+                const std::size_t offset = i - at_;
+                if (!fill()) {
+                    if (depth != 0 || in_string) decline();
+                    return take_until(buf_.size());
+                }
+                i = at_ + offset;
+                continue;
+            }
+            switch (kind_of(buf_[i])) {
+                case kind::escape: decline();  // flat_json takes no escapes
+                case kind::quote: in_string = !in_string; break;
+                case kind::open: depth += !in_string; break;
+                case kind::close:
+                    if (in_string) break;
+                    if (depth == 0) return take_until(i);  // the end of the container holding a scalar
+                    --depth;
+                    break;
+                case kind::stop:
+                    if (depth == 0 && !in_string) return take_until(i);
+                    break;
+                case kind::plain: break;
+            }
+            ++i;
+            if (depth == 0 && !in_string) return take_until(i);  // a string, or a container, ends
+        }
+    }
+
+private:
+    /// What a character means to value().
+    enum class kind : std::uint8_t { plain, quote, escape, open, close, stop };
+    static kind kind_of(char c) noexcept {
+        static constexpr auto kinds = [] {
+            std::array<kind, 256> k{};
+            k['"'] = kind::quote, k['\\'] = kind::escape, k['['] = k['{'] = kind::open, k[']'] = k['}'] = kind::close;
+            k[','] = k[' '] = k['\t'] = k['\n'] = k['\r'] = kind::stop;
+            return k;
+        }();
+        return kinds[static_cast<unsigned char>(c)];
+    }
+    static bool is_space(char c) noexcept { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
+    std::string_view take_until(std::size_t end) {
+        const std::string_view v(buf_.data() + at_, end - at_);
+        at_ = end;
+        return v;
+    }
+    /// Drops the text taken and reads a block more; false at the end.
+    bool fill() {
+        buf_.erase(0, at_);
+        at_ = 0;
+        const std::size_t size = buf_.size();
+        buf_.resize(size + block);
+        const auto got = in_.rdbuf()->sgetn(buf_.data() + size, static_cast<std::streamsize>(block));
+        buf_.resize(size + static_cast<std::size_t>(got));
+        return got > 0;
+    }
+
+    static constexpr std::size_t block = std::size_t{1} << 16;
+    std::istream& in_;
+    std::string buf_;
+    std::size_t at_ = 0;
+};
+
+/// Walks the document: {"keys" | "frames": [...], ...}, a bare array of
+/// keys, or {"tracks": {"name": {...} | [...], ...}, ...}. What read_json
+/// reads differently, or only once the whole text is known, is declined: a
+/// setting ("angles", "euler", "quat_order", "fps") after the keys it
+/// applies to, "tracks" beside "keys", a repeated name, a track without
+/// keys, anything flat_json declines. Errors, too, are left to read_json,
+/// which reports them in its own order.
+class json_stream_reader final : public key_reader {
+public:
+    json_stream_reader(std::istream& in, const read_options& opts)
+        : text_(in), opts_(opts), document_(object::kind::document, "", "", opts.settings, opts.order) {
+        const char c = text_.peek();
+        if (c == '[') {
+            text_.take('[');
+            begin_keys(document_, "", "");
+        } else {
+            text_.take('{');
+            open_.push_back(&document_);
+        }
+    }
+
+    bool next(std::string& track, raw_key& k) override {
+        for (;;) {
+            if (keys_) {
+                const char c = text_.peek();
+                if (c != ']') break;
+                text_.take(']');
+                if (keys_->count == 0) decline();
+                keys_.reset();
+            } else if (!open_.empty()) {
+                member();
+            } else {
+                if (!text_.at_end()) decline();  // text after the document
+                return false;
+            }
+        }
+        if (keys_->count > 0) text_.take(',');
+        if (!key_.parse(text_.value())) decline();
+        const fmt::format_int index(keys_->count++);
+        location at{0, keys_->path};  // "tracks.hip.keys[3]", as read_json names it
+        at.path.append("[").append(index.data(), index.size()).append("]");
+        k = detail::key_object_reader(key_.root(), opts_.source, std::move(at), keys_->order, keys_->frames).read();
+        track = keys_->track;
+        return true;
+    }
+
+    bool named() const override { return named_; }
+    location start() const override { return {}; }  // (no keys: declined)
+    const key_settings& settings() const override { return settings_; }
+
+private:
+    /// An object being read, and what its members have set.
+    struct object {
+        enum class kind { document, tracks, track };
+        object(kind t, std::string track, std::string at, const key_settings& s, quat_order o)
+            : type(t), name(std::move(track)), path(std::move(at)), settings(s), order(o) {}
+        kind type;
+        std::string name, path;  // a track's
+        key_settings settings;   // what it inherits, then its own fields over them
+        quat_order order;
+        std::set<std::string> members;
+        std::string fields = "{";  // its own settings, as a JSON object
+        bool keys = false;         // its keys (tracks) have begun
+    };
+    /// The array of keys being read.
+    struct key_array {
+        std::string track, path;
+        quat_order order;
+        bool frames;  // "frames", as convert writes: keys have a frame and a time
+        std::size_t count = 0;
+    };
+
+    /// Reads the next member of the innermost open object, or closes it.
+    void member() {
+        object& o = *open_.back();
+        if (text_.peek() == '}') {
+            text_.take('}');
+            if (!o.keys) decline();  // no keys, no tracks
+            return open_.pop_back();
+        }
+        if (!o.members.empty()) text_.take(',');
+        std::string name = text_.string();
+        text_.take(':');
+        if (!o.members.insert(name).second) decline();
+        if (o.type == object::kind::tracks) return begin_track(o, std::move(name));
+        const bool keys = name == "keys" || name == "frames";
+        if (keys || (o.type == object::kind::document && name == "tracks")) {
+            if (o.keys) decline();
+            o.keys = true;
+            apply_fields(o);
+            if (keys) {
+                text_.take('[');
+                return begin_keys(o, o.path, name);
+            }
+            text_.take('{');
+            named_ = true;
+            return open_.push_back(&tracks_.emplace(object::kind::tracks, "", "", o.settings, o.order));
+        }
+        const std::string_view value = text_.value();
+        if (!other_.parse(value)) decline();  // (checked all the same: the document must be valid JSON)
+        if (name == "angles" || name == "euler" || name == "quat_order" || name == "fps") {
+            if (o.keys) decline();  // it would change keys already read
+            o.fields += fmt::format("{}\"{}\": {}", o.fields.size() > 1 ? ", " : "", name, value);
+        }
+    }
+
+    /// A member of "tracks": a track object, or a bare array of keys.
+    void begin_track(object& tracks, std::string name) {
+        check_track_name(name, fmt::format("{}: document", opts_.source));
+        tracks.keys = true;
+        object& track = track_.emplace(object::kind::track, name, "tracks." + name, tracks.settings, tracks.order);
+        if (text_.peek() == '[') {
+            text_.take('[');
+            return begin_keys(track, track.path, "");
+        }
+        text_.take('{');
+        open_.push_back(&track);
+    }
+
+    /// The settings `o` has read over those it inherits, as read_json applies them.
+    void apply_fields(object& o) {
+        o.fields += '}';
+        flat_json fields;
+        if (!fields.parse(o.fields)) decline();
+        detail::apply_fields(fields.root(), o.settings, o.order, opts_.source);
+    }
+
+    void begin_keys(const object& owner, const std::string& path, const std::string& field) {
+        settings_ = owner.settings;
+        keys_ = key_array{owner.name, field.empty() ? path : detail::join_path(path, field), owner.order,
+                          field == "frames"};
+    }
+
+    json_text text_;
+    read_options opts_;
+    object document_;
+    std::optional<object> tracks_, track_;
+    std::vector<object*> open_;  // innermost last
+    bool named_ = false;
+    std::optional<key_array> keys_;
+    key_settings settings_;
+    flat_json key_{detail::max_key_values}, other_;
+};
+
+}  // namespace
+
+std::unique_ptr<key_reader> make_json_reader(std::istream& in, const read_options& opts) {
+    return std::make_unique<json_stream_reader>(in, opts);
+}
+
+}  // namespace keyrot
