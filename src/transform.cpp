@@ -195,14 +195,15 @@ void whole_rows(const options& o, const input& doc, row_pipeline& writer) {
     }
 }
 
-/// resample from streamed input into -o FILE in one pass. The writer
-/// needs facts before the first row that pass 1 would gather (track names,
-/// translations); they are guessed from the first key instead. When a guess
+/// resample or convert from streamed input into -o FILE in one pass. The
+/// writer needs facts before the first row that pass 1 would gather (track
+/// names, translations, convert's time columns); they are guessed from the
+/// first key instead. When a guess
 /// proves wrong or anything fails, the temporary file is dropped and false
 /// returned: the two passes then give the output or the error they always
 /// give. Warnings are held back until the end for the same reason.
-bool resample_in_one_pass(const options& o, const input_source& src, format in_fmt, format out_fmt,
-                          const std::string& target, std::ostream& out, std::ostream& err) {
+bool transform_in_one_pass(const options& o, const input_source& src, format in_fmt, format out_fmt,
+                           const std::string& target, std::ostream& out, std::ostream& err) {
     std::ostringstream held;
     warnings warn(held, src.source());
     try {
@@ -226,7 +227,7 @@ bool resample_in_one_pass(const options& o, const input_source& src, format in_f
             seen = stream_rows(o, src, in_fmt, nullptr, rows, warn);
             rows.finish();
         }
-        if (!seen || seen->named != guess.named || seen->translation() != guess.translation()) return false;
+        if (!seen || seen->table(o) != guess.table(o)) return false;
         for (const auto& t : seen->tracks)
             if (t.translation != t.first.translation.has_value()) return false;
         writer->finish();
@@ -241,8 +242,7 @@ bool resample_in_one_pass(const options& o, const input_source& src, format in_f
 /// resample or convert one input into `target` (a file) or `out`.
 void transform(const options& o, const input_source& src, format in_fmt, format out_fmt,
                const std::optional<std::string>& target, std::ostream& out, std::ostream& err) {
-    if (target && replaced_on_commit(*target) && o.cmd == command::resample &&
-        resample_in_one_pass(o, src, in_fmt, out_fmt, *target, out, err))
+    if (target && replaced_on_commit(*target) && transform_in_one_pass(o, src, in_fmt, out_fmt, *target, out, err))
         return;
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or

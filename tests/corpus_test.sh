@@ -87,9 +87,10 @@ for f in *; do
     fi
 done
 
-# resample -o FILE guesses the header from the first key (track names,
-# translation) to stream in one pass; where the guess is wrong the output
-# and the messages must still be those of the two passes on standard output.
+# resample and convert -o FILE guess the header from the first key (track
+# names, translation, convert's time columns) to stream in one pass; where
+# the guess is wrong the output and the messages must still be those of the
+# two passes on standard output.
 cd "$work" || exit 1
 printf 'time,qw,qx,qy,qz,tx,ty,tz\n0,1,0,0,0,,,\n1,0,0,0,1,1,2,3\n2,1,0,0,0,2,2,2\n' > late_translation.csv
 printf 'track,time,qw,qx,qy,qz,tx,ty,tz\na,0,1,0,0,0,,,\na,1,0,1,0,0,,,\nb,0,1,0,0,0,1,1,1\nb,1,0,0,1,0,2,2,2\n' \
@@ -136,17 +137,23 @@ for f in dense_bad_cell.csv dense_zero_key.csv dense_bad_cell.ndjson; do
         expect_error "$f $out" "keyrot: $f:$line: $message" -- "$keyrot" resample "$f" --fps 4 $out
     done
 done
+printf '{"frame": 0, "quat": [1, 0, 0, 0]}\n{"time": 1, "quat": [0, 1, 0, 0]}\n' > frame_then_time.ndjson
+printf '{"time": 0, "quat": [1, 0, 0, 0]}\n{"frame": 24, "quat": [0, 1, 0, 0]}\n' > time_then_frame.ndjson
 for f in late_translation.csv second_track_translation.csv interleaved.csv warnings.csv dense.csv \
+    frame_then_time.ndjson time_then_frame.ndjson \
     "$tests"/../data/* "$tests"/good/*; do
-    for fps in 4 20000; do  # 20000: tens of thousands of rows, formatted on several threads
-        "$keyrot" resample "$f" --fps $fps --to csv >two.out 2>two.err
+    # 20000 fps: tens of thousands of rows, formatted on several threads
+    for command in "resample --fps 4" "resample --fps 20000" convert; do
+        # shellcheck disable=SC2086
+        "$keyrot" $command "$f" --to csv >two.out 2>two.err
         rc_two=$?
-        "$keyrot" resample "$f" --fps $fps -o one.csv 2>one.err
+        # shellcheck disable=SC2086
+        "$keyrot" $command "$f" -o one.csv 2>one.err
         rc_one=$?
         if [[ $rc_one == "$rc_two" ]] && cmp -s one.csv two.out && cmp -s one.err two.err; then
             passed=$((passed + 1))
         else
-            fail "one pass $(basename "$f") at $fps fps: status $rc_one (two passes: $rc_two), stderr [$(cat one.err)]"
+            fail "one pass $(basename "$f"), $command: status $rc_one (two passes: $rc_two), stderr [$(cat one.err)]"
         fi
         rm -f one.csv two.out
     done

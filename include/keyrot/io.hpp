@@ -129,6 +129,7 @@ struct table_info {
     std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
     std::optional<double> fps;              ///< JSON header fields, when known
     std::optional<method> how;
+    bool operator==(const table_info&) const = default;
 };
 
 /// Writes rows one at a time into `out`. begin_track comes before each
