@@ -142,6 +142,31 @@ private:
     std::size_t at_ = 0;
 };
 
+/// The keys of one array, each parsed from its own text: the reader's, and
+/// copies on read_ahead's threads where the document has a single track.
+class json_keys final : public line_parser {
+public:
+    json_keys(std::string source, std::string track, std::string path, quat_order order, bool frames)
+        : source_(std::move(source)), track_(std::move(track)), path_(std::move(path)), order_(order), frames_(frames) {}
+
+    /// The key whose text is `text`, number `index` in its array.
+    bool parse(std::string_view text, std::size_t index, std::string& track, raw_key& k) override {
+        if (!key_.parse(text)) decline();
+        const fmt::format_int number(index);
+        location at{0, path_};  // "tracks.hip.keys[3]", as read_json names it
+        at.path.append("[").append(number.data(), number.size()).append("]");
+        k = detail::key_object_reader(key_.root(), source_, std::move(at), order_, frames_).read();
+        track = track_;
+        return true;
+    }
+
+private:
+    std::string source_, track_, path_;
+    quat_order order_;
+    bool frames_;  // "frames", as convert writes: keys have a frame and a time
+    flat_json key_{detail::max_key_values};
+};
+
 /// Walks the document: {"keys" | "frames": [...], ...}, a bare array of
 /// keys, or {"tracks": {"name": {...} | [...], ...}, ...}. What read_json
 /// reads differently, or only once the whole text is known, is declined: a
@@ -164,12 +189,18 @@ public:
     }
 
     bool next(std::string& track, raw_key& k) override {
+        std::string_view text;
+        std::size_t index = 0;
+        return next_line(text, index) && keys_->parse(text, index, track, k);
+    }
+
+    /// The next key's text, and its number in its array.
+    bool next_line(std::string_view& text, std::size_t& index) override {
         for (;;) {
             if (keys_) {
-                const char c = text_.peek();
-                if (c != ']') break;
+                if (text_.peek() != ']') break;
                 text_.take(']');
-                if (keys_->count == 0) decline();
+                if (count_ == 0) decline();
                 keys_.reset();
             } else if (!open_.empty()) {
                 member();
@@ -178,14 +209,17 @@ public:
                 return false;
             }
         }
-        if (keys_->count > 0) text_.take(',');
-        if (!key_.parse(text_.value())) decline();
-        const fmt::format_int index(keys_->count++);
-        location at{0, keys_->path};  // "tracks.hip.keys[3]", as read_json names it
-        at.path.append("[").append(index.data(), index.size()).append("]");
-        k = detail::key_object_reader(key_.root(), opts_.source, std::move(at), keys_->order, keys_->frames).read();
-        track = keys_->track;
+        if (count_ > 0) text_.take(',');
+        text = text_.value();
+        index = count_++;
         return true;
+    }
+
+    /// With a single track, once its keys have begun: its settings and
+    /// names stay as they are to the end.
+    std::unique_ptr<line_parser> parser() const override {
+        if (named_ || !keys_) return nullptr;
+        return std::make_unique<json_keys>(*keys_);
     }
 
     bool named() const override { return named_; }
@@ -206,14 +240,6 @@ private:
         std::string fields = "{";  // its own settings, as a JSON object
         bool keys = false;         // its keys (tracks) have begun
     };
-    /// The array of keys being read.
-    struct key_array {
-        std::string track, path;
-        quat_order order;
-        bool frames;  // "frames", as convert writes: keys have a frame and a time
-        std::size_t count = 0;
-    };
-
     /// Reads the next member of the innermost open object, or closes it.
     void member() {
         object& o = *open_.back();
@@ -271,8 +297,9 @@ private:
 
     void begin_keys(const object& owner, const std::string& path, const std::string& field) {
         settings_ = owner.settings;
-        keys_ = key_array{owner.name, field.empty() ? path : detail::join_path(path, field), owner.order,
-                          field == "frames"};
+        keys_.emplace(opts_.source, owner.name, field.empty() ? path : detail::join_path(path, field), owner.order,
+                      field == "frames");
+        count_ = 0;
     }
 
     json_text text_;
@@ -281,9 +308,10 @@ private:
     std::optional<object> tracks_, track_;
     std::vector<object*> open_;  // innermost last
     bool named_ = false;
-    std::optional<key_array> keys_;
+    std::optional<json_keys> keys_;  // the array being read
+    std::size_t count_ = 0;          // its keys so far
     key_settings settings_;
-    flat_json key_{detail::max_key_values}, other_;
+    flat_json other_;
 };
 
 }  // namespace
