@@ -198,10 +198,10 @@ void whole_rows(const options& o, const input& doc, row_pipeline& writer) {
 /// resample or convert from streamed input into -o FILE in one pass. The
 /// writer needs facts before the first row that pass 1 would gather (track
 /// names, translations, convert's time columns); they are guessed from the
-/// first key instead. When a guess
-/// proves wrong or anything fails, the temporary file is dropped and false
-/// returned: the two passes then give the output or the error they always
-/// give. Warnings are held back until the end for the same reason.
+/// first key instead. When a guess proves wrong or anything fails, the
+/// temporary file is dropped and false returned: the two passes then give
+/// the output or the error they always give. Warnings are held back until
+/// the end for the same reason.
 bool transform_in_one_pass(const options& o, const input_source& src, format in_fmt, format out_fmt,
                            const std::string& target, std::ostream& out, std::ostream& err) {
     std::ostringstream held;
