@@ -8,6 +8,9 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <deque>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
@@ -142,28 +145,58 @@ private:
     std::size_t at_ = 0;
 };
 
-/// The keys of one array, each parsed from its own text: the reader's, and
-/// copies on read_ahead's threads where the document has a single track.
+/// A track's keys array, as the keys in it are read: its settings and names.
+struct key_array {
+    std::string track, path;  // path: "tracks.hip.keys", as read_json names it
+    key_settings settings;
+    quat_order order;
+    bool frames;  // "frames", as convert writes: keys have a frame and a time
+};
+
+/// The arrays of a document, in order, added as the reader comes to them
+/// and read by the parsers on read_ahead's threads: a deque, so that what
+/// they hold stays in place.
+struct key_arrays {
+    explicit key_arrays(std::string from) : source(std::move(from)) {}
+    const std::string source;  // for messages
+    std::mutex mutex;
+    std::deque<key_array> arrays;  // under mutex
+};
+
+/// A key's place, read_ahead's line number for it: its array's number above
+/// these bits, its number in the array in them.
+constexpr std::size_t index_bits = 32;
+static_assert(sizeof(std::size_t) * 8 > index_bits, "a 64-bit size_t holds both numbers");
+
+/// Keys, each parsed from its own text: the reader's parser, and copies on
+/// read_ahead's threads.
 class json_keys final : public line_parser {
 public:
-    json_keys(std::string source, std::string track, std::string path, quat_order order, bool frames)
-        : source_(std::move(source)), track_(std::move(track)), path_(std::move(path)), order_(order), frames_(frames) {}
+    explicit json_keys(std::shared_ptr<key_arrays> arrays) : arrays_(std::move(arrays)) {}
+    json_keys(const json_keys& other) : json_keys(other.arrays_) {}
 
-    /// The key whose text is `text`, number `index` in its array.
-    bool parse(std::string_view text, std::size_t index, std::string& track, raw_key& k) override {
+    /// The key whose text is `text`, at `place` (its array's number, and its
+    /// number in the array).
+    bool parse(std::string_view text, std::size_t place, std::string& track, raw_key& k) override {
+        if (const std::size_t number = place >> index_bits; number != number_) {
+            const std::lock_guard lock(arrays_->mutex);
+            array_ = &arrays_->arrays[number];
+            number_ = number;
+        }
         if (!key_.parse(text)) decline();
-        const fmt::format_int number(index);
-        location at{0, path_};  // "tracks.hip.keys[3]", as read_json names it
-        at.path.append("[").append(number.data(), number.size()).append("]");
-        k = detail::key_object_reader(key_.root(), source_, std::move(at), order_, frames_).read();
-        track = track_;
+        const fmt::format_int index(place & ((std::size_t{1} << index_bits) - 1));
+        location at{0, array_->path};
+        at.path.append("[").append(index.data(), index.size()).append("]");
+        k = detail::key_object_reader(key_.root(), arrays_->source, std::move(at), array_->order, array_->frames).read();
+        track = array_->track;
         return true;
     }
+    const key_settings* settings() const override { return &array_->settings; }
 
 private:
-    std::string source_, track_, path_;
-    quat_order order_;
-    bool frames_;  // "frames", as convert writes: keys have a frame and a time
+    std::shared_ptr<key_arrays> arrays_;
+    std::size_t number_ = SIZE_MAX;
+    const key_array* array_ = nullptr;  // arrays_'s number_
     flat_json key_{detail::max_key_values};
 };
 
@@ -177,7 +210,8 @@ private:
 class json_stream_reader final : public key_reader {
 public:
     json_stream_reader(std::istream& in, const read_options& opts)
-        : text_(in), opts_(opts), document_(object::kind::document, "", "", opts.settings, opts.order) {
+        : text_(in), opts_(opts), document_(object::kind::document, "", "", opts.settings, opts.order),
+          arrays_(std::make_shared<key_arrays>(opts.source)), keys_(arrays_) {
         const char c = text_.peek();
         if (c == '[') {
             text_.take('[');
@@ -190,18 +224,19 @@ public:
 
     bool next(std::string& track, raw_key& k) override {
         std::string_view text;
-        std::size_t index = 0;
-        return next_line(text, index) && keys_->parse(text, index, track, k);
+        std::size_t place = 0;
+        return next_line(text, place) && keys_.parse(text, place, track, k);
     }
 
-    /// The next key's text, and its number in its array.
-    bool next_line(std::string_view& text, std::size_t& index) override {
+    /// The next key's text, and its place: its array's number, and its
+    /// number in the array.
+    bool next_line(std::string_view& text, std::size_t& place) override {
         for (;;) {
-            if (keys_) {
+            if (in_keys_) {
                 if (text_.peek() != ']') break;
                 text_.take(']');
                 if (count_ == 0) decline();
-                keys_.reset();
+                in_keys_ = false;
             } else if (!open_.empty()) {
                 member();
             } else {
@@ -210,17 +245,13 @@ public:
             }
         }
         if (count_ > 0) text_.take(',');
+        if (count_ >> index_bits != 0) decline();  // four billion keys in one array: no place left
         text = text_.value();
-        index = count_++;
+        place = (arrays_begun_ - 1) << index_bits | count_++;
         return true;
     }
 
-    /// With a single track, once its keys have begun: its settings and
-    /// names stay as they are to the end.
-    std::unique_ptr<line_parser> parser() const override {
-        if (named_ || !keys_) return nullptr;
-        return std::make_unique<json_keys>(*keys_);
-    }
+    std::unique_ptr<line_parser> parser() const override { return std::make_unique<json_keys>(keys_); }
 
     bool named() const override { return named_; }
     location start() const override { return {}; }  // (no keys: declined)
@@ -297,8 +328,14 @@ private:
 
     void begin_keys(const object& owner, const std::string& path, const std::string& field) {
         settings_ = owner.settings;
-        keys_.emplace(opts_.source, owner.name, field.empty() ? path : detail::join_path(path, field), owner.order,
-                      field == "frames");
+        key_array keys{owner.name, field.empty() ? path : detail::join_path(path, field), owner.settings, owner.order,
+                       field == "frames"};
+        {
+            const std::lock_guard lock(arrays_->mutex);
+            arrays_->arrays.push_back(std::move(keys));
+        }
+        ++arrays_begun_;
+        in_keys_ = true;
         count_ = 0;
     }
 
@@ -308,9 +345,12 @@ private:
     std::optional<object> tracks_, track_;
     std::vector<object*> open_;  // innermost last
     bool named_ = false;
-    std::optional<json_keys> keys_;  // the array being read
-    std::size_t count_ = 0;          // its keys so far
-    key_settings settings_;
+    std::shared_ptr<key_arrays> arrays_;
+    json_keys keys_;  // the reader's own parser
+    std::size_t arrays_begun_ = 0;
+    bool in_keys_ = false;    // within an array of keys
+    std::size_t count_ = 0;   // its keys so far
+    key_settings settings_;   // its settings
     flat_json other_;
 };
 

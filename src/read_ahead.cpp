@@ -55,6 +55,7 @@ public:
             }
             take();
         }
+        settings_ = current_.settings[at_];
         auto& [name, key] = current_.keys[at_++];
         track.swap(name);  // the batch keeps the caller's string, to be written over
         k = std::move(key);
@@ -64,13 +65,14 @@ public:
     // first NDJSON line) and stay so: safe to ask while the threads read.
     bool named() const override { return inner_->named(); }
     location start() const override { return inner_->start(); }
-    /// The inner reader's, which stay the same from key to key where it is read ahead.
-    const key_settings& settings() const override { return inner_->settings(); }
+    /// The parser's for the key given last, or the inner reader's.
+    const key_settings& settings() const override { return settings_ ? *settings_ : inner_->settings(); }
 
 private:
     static constexpr std::size_t inline_limit = 1024, batch_lines = 1024, max_batches = 4;
     struct batch {
         std::vector<std::pair<std::string, raw_key>> keys;
+        std::vector<const key_settings*> settings;               // each key's, where the parser has them
         std::string text;                                        // the lines
         std::vector<std::pair<std::size_t, std::size_t>> lines;  // each one's end in text, and its number
         bool last = false;                                       // no keys after these
@@ -142,15 +144,17 @@ private:
         std::size_t n = 0, begin = 0;
         try {
             b.keys.resize(b.lines.size());
+            b.settings.resize(b.lines.size());
             for (const auto& [end, line_no] : b.lines) {
                 const std::string_view line(b.text.data() + begin, end - begin);
                 begin = end;
-                if (parser.parse(line, line_no, b.keys[n].first, b.keys[n].second)) ++n;
+                if (parser.parse(line, line_no, b.keys[n].first, b.keys[n].second)) b.settings[n++] = parser.settings();
             }
         } catch (...) {  // the keys before it still go out
             failed(b);
         }
         b.keys.resize(n);
+        b.settings.resize(n);
     }
     void take() {
         std::unique_lock lock(mutex_);
@@ -169,6 +173,7 @@ private:
     std::size_t inline_keys_ = 0;
     batch current_;  // the caller's
     std::size_t at_ = 0;
+    const key_settings* settings_ = nullptr;  // the parser's, for the key given last
     std::vector<std::unique_ptr<line_parser>> parsers_;  // one to a thread
     std::mutex reading_;                                 // inner_'s turn: batches are numbered and read in order
     std::mutex mutex_;

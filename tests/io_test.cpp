@@ -524,6 +524,11 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
         CHECK(streamed == whole_keys(doc));
         if (pad % 20 == 0) CHECK(streamed_keys(doc, true) == streamed);
     }
+    // Parsed ahead, each track's keys keep its settings and names.
+    const std::string two = R"({"tracks": {"a": {"quat_order": "xyzw", "keys": [)" + keys +
+                            R"(]}, "b": {"angles": "radians", "fps": 30, "keys": [)" + keys + "]}}}";
+    CHECK(streamed_keys(two, true).find("\nb 1 - 30 tracks.b.keys[1399] 1399 ") != std::string::npos);
+    CHECK(streamed_keys(two, true) == whole_keys(two));
     // Parsed ahead, an error still comes after the keys before it (the
     // document is then read whole, to say what is wrong).
     const std::string bad = "[" + keys + R"(, {"time": 1400, "quat": [1, 0, 0]}])";

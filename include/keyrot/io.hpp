@@ -58,6 +58,10 @@ public:
     /// The key on line `line_no`, and the name of its track; false for a line
     /// with none (blank, a comment). Throws input_error as key_reader::next.
     virtual bool parse(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) = 0;
+    /// Where settings differ from track to track (a JSON document's): those
+    /// of the key parse() read last, valid as long as the reader. Otherwise
+    /// none: the reader's hold for every key.
+    virtual const key_settings* settings() const { return nullptr; }
 };
 
 /// Keys one at a time from a line-based document (CSV, NDJSON), in file
