@@ -237,12 +237,18 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
     const int third = extrinsic ? 2 : 0;
     const double ab = std::hypot(a, b);
     const double cd = std::hypot(c, d);
-    // The middle angle's distance from its two singular values, each
-    // computed directly so that tiny distances keep their precision.
-    const double from_zero = 2 * std::atan2(cd, ab);
-    const double from_pi = 2 * std::atan2(ab, cd);
+    // Gimbal lock: the middle angle's distance from one of its two singular
+    // values, computed directly so that tiny distances keep their precision.
+    // Only where it may be that small: a ratio over 1e-15 puts it above
+    // 2e-15, well beyond the threshold, and its atan2 is skipped.
+    constexpr double far_ratio = 1e-15;
+    static_assert(2 * far_ratio > 4 * tol::gimbal_lock);
+    const auto locked = [](double y, double x) {
+        return y <= x * far_ratio && 2 * std::atan2(y, x) <= tol::gimbal_lock;
+    };
+    const bool near_zero = locked(cd, ab), near_pi = locked(ab, cd);
     if (proper) {
-        ang[1] = from_zero;
+        ang[1] = 2 * std::atan2(cd, ab);
     } else {
         // The paper's 2 atan2(cd, ab) - pi/2 cancels for a small middle angle.
         // With tan(x - pi/4) = (tan x - 1)/(tan x + 1) and cd^2 - ab^2 =
@@ -252,11 +258,11 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
     }
     const double half_sum = std::atan2(b, a);
     const double half_diff = std::atan2(d, c);
-    if (from_zero <= tol::gimbal_lock) {
+    if (near_zero) {
         out.gimbal_lock = true;
         ang[2] = 0;
         ang[0] = 2 * half_sum;
-    } else if (from_pi <= tol::gimbal_lock) {
+    } else if (near_pi) {
         out.gimbal_lock = true;
         ang[2] = 0;
         ang[0] = 2 * half_diff * (extrinsic ? -1 : 1);

@@ -178,6 +178,25 @@ TEST_CASE("gimbal lock: the third angle is 0 and the rotation is kept") {
     }
 }
 
+TEST_CASE("gimbal lock: a middle angle within 4e-16 rad of 0 or pi, and none further away") {
+    // ZXZ with the middle turn about x written exactly: delta/2 is its own
+    // sine and 1 its cosine, so delta from 0 is (1, delta/2, 0, 0) and
+    // delta from pi is (delta/2, 1, 0, 0).
+    const quat outer = from_axis_angle({0, 0, 1}, 0.4), inner = from_axis_angle({0, 0, 1}, 0.7);
+    for (bool from_pi : {false, true}) {
+        for (double delta : {0.0, 1e-16, 2e-16, 3.5e-16, 5e-16, 1e-15, 3e-15, 1e-12}) {
+            CAPTURE(from_pi);
+            CAPTURE(delta);
+            const quat middle = from_pi ? quat{delta / 2, 1, 0, 0} : quat{1, delta / 2, 0, 0};
+            const quat q = outer * middle * inner;
+            const euler_angles e = to_euler(q, seq("ZXZ"));
+            CHECK(e.gimbal_lock == (delta <= 3.5e-16));
+            CHECK((e.angles[2] == 0) == e.gimbal_lock);
+            CHECK(same_rotation(from_euler(e.angles, seq("ZXZ")), q, 1e-15));
+        }
+    }
+}
+
 TEST_CASE("matrix round trip through every Shepperd branch, near 0 and 180 degrees") {
     keyrot::test::random_rotations rng(9);
     std::vector<quat> fixtures = {quat{}, quat{0, 1, 0, 0}, quat{0, 0, 1, 0}, quat{0, 0, 0, 1},
