@@ -275,17 +275,20 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
     return out;
 }
 
-mat3 to_matrix(quat q) noexcept {
+KEYROT_FMA_CLONES mat3 to_matrix(quat q) noexcept {
     // The homogeneous form (entries over |q|^2) is exact for a quaternion
     // whose norm is a rounding error away from 1, and each entry is summed
     // in twice the precision: no 1 - 2(y^2 + z^2) cancellation near 180 degrees.
     const double w = q.w, x = q.x, y = q.y, z = q.z;
-    const double s = 1 / dot2({w, x, y, z}, {w, x, y, z});
+    const double s = 1 / inline_dot2({w, x, y, z}, {w, x, y, z});
     const double d = 2 * s;
     mat3 r;
-    r.m[0] = {s * dot2({w, x, -y, -z}, {w, x, y, z}), d * dot2({x, -z}, {y, w}), d * dot2({x, y}, {z, w})};
-    r.m[1] = {d * dot2({x, z}, {y, w}), s * dot2({w, -x, y, -z}, {w, x, y, z}), d * dot2({y, -x}, {z, w})};
-    r.m[2] = {d * dot2({x, -y}, {z, w}), d * dot2({y, x}, {z, w}), s * dot2({w, -x, -y, z}, {w, x, y, z})};
+    r.m[0] = {s * inline_dot2({w, x, -y, -z}, {w, x, y, z}), d * inline_dot2({x, -z}, {y, w}),
+              d * inline_dot2({x, y}, {z, w})};
+    r.m[1] = {d * inline_dot2({x, z}, {y, w}), s * inline_dot2({w, -x, y, -z}, {w, x, y, z}),
+              d * inline_dot2({y, -x}, {z, w})};
+    r.m[2] = {d * inline_dot2({x, -y}, {z, w}), d * inline_dot2({y, x}, {z, w}),
+              s * inline_dot2({w, -x, -y, z}, {w, x, y, z})};
     return r;
 }
 

@@ -24,27 +24,6 @@ double norm(vec3 v) noexcept {
 
 quat operator-(quat q) noexcept { return {-q.w, -q.x, -q.y, -q.z}; }
 
-namespace {
-
-/// dot2, forced inline so that the FMA clone of each caller has it with the
-/// fused instruction (as a call of its own, link-time optimisation may leave
-/// it, and std::fma with it, to the baseline CPU's library call).
-template <std::size_t N>
-[[gnu::always_inline]] inline double inline_dot2(const double (&x)[N], const double (&y)[N]) noexcept {
-    double sum = 0, err = 0;
-    for (std::size_t i = 0; i < N; ++i) {
-        const double p = x[i] * y[i];
-        const double p_err = std::fma(x[i], y[i], -p);
-        const double t = sum + p;
-        const double z = t - sum;
-        err += (sum - (t - z)) + (p - z) + p_err;
-        sum = t;
-    }
-    return sum + err;
-}
-
-}  // namespace
-
 template <std::size_t N>
 double dot2(const double (&x)[N], const double (&y)[N]) noexcept {
     return inline_dot2(x, y);
