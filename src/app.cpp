@@ -4,6 +4,7 @@
 #include <new>
 #include <optional>
 #include <ostream>
+#include <sstream>
 
 #include "commands.hpp"
 #include "keyrot/io_json.hpp"
@@ -63,12 +64,34 @@ void load_lines(input& result, std::istream& in, const read_options& ro, warning
     raw_key raw;
     while (reader->next(name, raw)) {
         const auto [it, added] = index.emplace(name, tracks.size());
-        if (added) tracks.emplace_back(name, raw.at, ro.settings);
+        if (added) tracks.emplace_back(name, raw.at, reader->settings());  // a JSON track's may be its own
         tracks[it->second].add(raw, warn);
     }
     if (tracks.empty()) throw input_error(where(result.source, reader->start()), "no keys: expected at least one key");
     for (track_builder& t : tracks) result.tracks.push_back(std::move(t).finish(warn));
     result.named = reader->named();
+}
+
+/// A JSON document's keys streamed (make_json_reader), as line-based
+/// input's are: they take their own room, where the document read whole
+/// takes about four times its text. False when the reader does not take the
+/// document, or finds an error: it is then read whole, which says what is
+/// wrong as it always has. Its warnings are held back until it is known which.
+bool load_streamed_json(input& result, const input_source& src, const read_options& ro, warnings& warn) {
+    std::ostringstream held;
+    warnings attempt(held, src.source());
+    input streamed{result.source, result.fmt, false, {}};
+    try {
+        const auto stream = src.open();
+        load_lines(streamed, *stream, ro, attempt);
+    } catch (const error&) {
+        return false;
+    } catch (const std::bad_alloc&) {  // the parsing threads', say, which the whole reader does without
+        return false;
+    }
+    warn.adopt(attempt, held.str());
+    result = std::move(streamed);
+    return true;
 }
 
 /// A JSON document's tracks, one after another.
@@ -93,11 +116,14 @@ private:
 
 }  // namespace
 
-input load(const options& o, const input_source& src, warnings& warn) {
+input load(const options& o, const input_source& src, warnings& warn, json_reading json) {
     input result{src.source(), src.detect(o.from), false, {}};
     try {
-        const auto stream = src.open();
         const read_options ro = reading(o, src);
+        if (result.fmt == format::json && json == json_reading::streamed_first &&
+            load_streamed_json(result, src, ro, warn))
+            return result;
+        const auto stream = src.open();
         if (result.fmt != format::json) {
             load_lines(result, *stream, ro, warn);
             return result;

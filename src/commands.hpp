@@ -29,7 +29,11 @@ struct input {
     bool named = false;
     std::vector<track> tracks;
 };
-input load(const options& o, const input_source& src, warnings& warn);
+/// How load reads a JSON document: `streamed_first` tries make_json_reader
+/// first, which holds only the keys (resample and convert have already
+/// found that it does not take the document when they load one).
+enum class json_reading { whole, streamed_first };
+input load(const options& o, const input_source& src, warnings& warn, json_reading json);
 
 /// Writes `text` to -o FILE (atomically) or to `out`.
 void emit(const options& o, const std::string& text, std::ostream& out);

@@ -32,8 +32,9 @@ void warnings::once(const std::string& kind, const std::string& message) {
     if (said_.insert(kind).second) print_error(err_, "warning: " + source_ + ": " + message);
 }
 
-void warnings::adopt(warnings& other) {
+void warnings::adopt(warnings& other, std::string_view printed) {
     const std::scoped_lock lock(mutex_, other.mutex_);
+    err_ << printed;
     said_.insert(other.said_.begin(), other.said_.end());
 }
 

@@ -141,8 +141,8 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
     if (o.inputs[0] == "-" && o.inputs[1] == "-") throw usage_error("compare: only one of EXPECTED and ACTUAL can be '-'");
     const input_source expected_src(o.inputs[0], in), actual_src(o.inputs[1], in);
     warnings warn_e(err, expected_src.source()), warn_a(err, actual_src.source());
-    const input expected = load(o, expected_src, warn_e);
-    const input actual = load(o, actual_src, warn_a);
+    const input expected = load(o, expected_src, warn_e, json_reading::streamed_first);
+    const input actual = load(o, actual_src, warn_a, json_reading::streamed_first);
     const tolerances tol{o.tol_deg, o.tol_translation};
     const comparison c = compare_tracks(expected.tracks, actual.tracks, tol);
 
@@ -239,7 +239,7 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
         try {
             const input_source src(name, in);
             warnings warn(err, src.source());
-            const input doc = load(o, src, warn);
+            const input doc = load(o, src, warn, json_reading::streamed_first);
             std::vector<track_info> infos;
             for (const track& t : doc.tracks) infos.push_back(describe(t));
             text += as_json ? info_json(doc, infos) : info_text(doc, infos, o.precision);

@@ -118,7 +118,7 @@ document_facts scan(const options& o, const input_source& src, format f, warning
 /// it does not, or finds an error: the document is then read whole, which
 /// says what is wrong as it always has. Its warnings are held back until it
 /// is known which.
-bool scan_json(const options& o, const input_source& src, document_facts& d, warnings& warn, std::ostream& err) {
+bool scan_json(const options& o, const input_source& src, document_facts& d, warnings& warn) {
     std::ostringstream held;
     warnings attempt(held, src.source());
     bool interleaved = false;
@@ -128,8 +128,7 @@ bool scan_json(const options& o, const input_source& src, document_facts& d, war
         return false;
     }
     if (interleaved) return false;
-    err << held.str();
-    warn.adopt(attempt);
+    warn.adopt(attempt, held.str());
     return true;
 }
 
@@ -251,10 +250,10 @@ void transform(const options& o, const input_source& src, format in_fmt, format 
     bool read_whole = false;
     document_facts d;
     std::optional<input> whole;
-    if (in_fmt == format::json) read_whole = !scan_json(o, src, d, warn, err);
+    if (in_fmt == format::json) read_whole = !scan_json(o, src, d, warn);
     else d = scan(o, src, in_fmt, warn, read_whole);
     if (read_whole) {
-        whole = load(o, src, warn);
+        whole = load(o, src, warn, json_reading::whole);
         d = facts_of(*whole);
     }
     d.check(o, src.source());

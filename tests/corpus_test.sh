@@ -221,6 +221,49 @@ for command in "resample --fps 50" "convert --rep axis-angle"; do
         fi
     done
 done
+# info and compare too, by name and on standard input; and a document of
+# Euler keys at frames, whose settings (the document's "fps", "angles" and
+# "euler", a track's own "euler") make its keys, over the flags': read
+# whole, its "fps" comes last. The second track's 1000th key is 2 degrees
+# off in compare.
+awk 'BEGIN { printf "{\"euler\": \"ZYX\", \"angles\": \"degrees\", \"fps\": 30, \"tracks\": {"
+             for (j = 0; j < 2; j++) {
+                 printf "%s\"e%d\": {%s\"keys\": [\n", j ? "]}, " : "", j, j ? "\"euler\": \"xyz\", " : ""
+                 for (i = 0; i < 1500; i++)
+                     printf "%s{\"frame\": %d, \"euler\": [%.17g, %.17g, %.17g]}", i ? ",\n" : "", 5 * i,
+                         170 * sin(i / 9), 80 * cos(i / 13 + j), 120 * sin(i / 5)
+             }
+             print "]}}}" }' > streamed/euler.json
+sed 's/"fps": 30, //; s/}}}$/}}, "fps": 30}/' streamed/euler.json > read_whole/euler.json
+for dir in streamed read_whole; do  # line 2501: e1's 1000th key
+    awk 'NR == 2501 { i = index($0, "["); rest = substr($0, i + 1)
+                      $0 = substr($0, 1, i) sprintf("%.17g", rest + 2) substr(rest, index(rest, ",")) }
+         { print }' $dir/euler.json > $dir/euler_off.json
+done
+for way in info info_stdin info_json compare compare_stdin euler_info euler_compare euler_resample; do
+    for dir in streamed read_whole; do
+        case $way in
+            info) (cd $dir && "$keyrot" info track.json >out 2>err) ;;
+            info_stdin) (cd $dir && "$keyrot" info --from json <track.json >out 2>err) ;;
+            info_json) (cd $dir && "$keyrot" info track.json --to json -o out 2>err) ;;
+            compare) (cd $dir && "$keyrot" compare track.json track.json >out 2>err) ;;
+            compare_stdin) (cd $dir && "$keyrot" compare track.json - <track.json >out 2>err) ;;
+            euler_info) (cd $dir && "$keyrot" info euler.json --euler zxy --key-fps 24 >out 2>err) ;;
+            euler_compare) (cd $dir && "$keyrot" compare euler.json euler_off.json --euler zxy >out 2>err) ;;
+            euler_resample) (cd $dir && "$keyrot" resample euler.json --rep euler --to csv >out 2>err) ;;
+        esac
+    done
+    case $way in
+        euler_compare) [[ $(cat streamed/out) == *"3000 rows compared, 1 failed; largest difference 2 deg"* ]] && said=yes || said="" ;;
+        euler_*) said=yes ;;
+        *) [[ $(cat streamed/err) == *"tracks.j1.keys[700]"* ]] && said=yes || said="" ;;
+    esac
+    if [[ -s streamed/out && -n $said ]] && cmp -s streamed/out read_whole/out && cmp -s streamed/err read_whole/err; then
+        passed=$((passed + 1))
+    else
+        fail "JSON $way: streamed and read whole differ [$(cat streamed/err)]"
+    fi
+done
 
 # Formatted on several threads, batches must come out whole and in order:
 # each track's frames 0..20000 once each, in order, and a key exact.

@@ -43,9 +43,9 @@ public:
     warnings(std::ostream& err, std::string source) : err_(err), source_(std::move(source)) {}
     void once(const std::string& kind, const std::string& message);
     const std::string& source() const noexcept { return source_; }
-    /// What `other` has said counts as said here too (an attempt whose
-    /// warnings the caller printed).
-    void adopt(warnings& other);
+    /// An attempt's warnings, held back until it succeeded: `printed` (its
+    /// text) is printed here, and what `other` said counts as said here.
+    void adopt(warnings& other, std::string_view printed);
 
 private:
     std::ostream& err_;
