@@ -248,7 +248,7 @@ for way in info info_stdin info_json compare compare_stdin euler_info euler_comp
             info_json) (cd $dir && "$keyrot" info track.json --to json -o out 2>err) ;;
             compare) (cd $dir && "$keyrot" compare track.json track.json >out 2>err) ;;
             compare_stdin) (cd $dir && "$keyrot" compare track.json - <track.json >out 2>err) ;;
-            euler_info) (cd $dir && "$keyrot" info euler.json --euler zxy --key-fps 24 >out 2>err) ;;
+            euler_info) (cd $dir && "$keyrot" info euler.json --euler zxy --key-fps 24 --radians >out 2>err) ;;
             euler_compare) (cd $dir && "$keyrot" compare euler.json euler_off.json --euler zxy >out 2>err) ;;
             euler_resample) (cd $dir && "$keyrot" resample euler.json --rep euler --to csv >out 2>err) ;;
         esac
