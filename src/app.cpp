@@ -4,7 +4,6 @@
 #include <new>
 #include <optional>
 #include <ostream>
-#include <sstream>
 
 #include "commands.hpp"
 #include "keyrot/io_json.hpp"
@@ -78,20 +77,16 @@ void load_lines(input& result, std::istream& in, const read_options& ro, warning
 /// document, or finds an error: it is then read whole, which says what is
 /// wrong as it always has. Its warnings are held back until it is known which.
 bool load_streamed_json(input& result, const input_source& src, const read_options& ro, warnings& warn) {
-    std::ostringstream held;
-    warnings attempt(held, src.source());
-    input streamed{result.source, result.fmt, false, {}};
-    try {
-        const auto stream = src.open();
-        load_lines(streamed, *stream, ro, attempt);
-    } catch (const error&) {
-        return false;
-    } catch (const std::bad_alloc&) {  // the parsing threads', say, which the whole reader does without
-        return false;
-    }
-    warn.adopt(attempt, held.str());
-    result = std::move(streamed);
-    return true;
+    return with_held_warnings(warn, [&](warnings& attempt) {
+        input streamed{result.source, result.fmt, false, {}};
+        try {
+            load_lines(streamed, *src.open(), ro, attempt);
+        } catch (const std::bad_alloc&) {  // the parsing threads', say, which the whole reader does without
+            return false;
+        }
+        result = std::move(streamed);
+        return true;
+    });
 }
 
 /// A JSON document's tracks, one after another.

@@ -119,17 +119,11 @@ document_facts scan(const options& o, const input_source& src, format f, warning
 /// says what is wrong as it always has. Its warnings are held back until it
 /// is known which.
 bool scan_json(const options& o, const input_source& src, document_facts& d, warnings& warn) {
-    std::ostringstream held;
-    warnings attempt(held, src.source());
-    bool interleaved = false;
-    try {
+    return with_held_warnings(warn, [&](warnings& attempt) {
+        bool interleaved = false;
         d = scan(o, src, format::json, attempt, interleaved);
-    } catch (const error&) {
-        return false;
-    }
-    if (interleaved) return false;
-    warn.adopt(attempt, held.str());
-    return true;
+        return !interleaved;
+    });
 }
 
 sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
