@@ -345,7 +345,7 @@ char* write_number(char* out, double v, std::optional<int> precision) {
     // Every number keyrot prints passes here: a NaN or infinity would be a
     // bug upstream, and must stop the output rather than reach it.
     if (!std::isfinite(v)) throw std::logic_error(fmt::format("non-finite number {} in the output", v));
-    if (v == 0) v = 0;  // drops the sign of -0
+    if (v == 0) return *out = '0', out + 1;  // never -0; zeros are common (matrix4's constant cells)
     if (!precision) {
         // Whole numbers (frame numbers, most keys' zeros) take the integer path.
         if (std::fabs(v) < 1e15) {
