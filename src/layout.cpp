@@ -347,7 +347,7 @@ char* write_number(char* out, double v, std::optional<int> precision) {
     if (!std::isfinite(v)) throw std::logic_error(fmt::format("non-finite number {} in the output", v));
     if (v == 0) return *out = '0', out + 1;  // never -0; zeros are common (matrix4's constant cells)
     if (!precision) {
-        // Whole numbers (frame numbers, most keys' zeros) take the integer path.
+        // Whole numbers (frame numbers, a 4x4 matrix's 1) take the integer path.
         if (std::fabs(v) < 1e15) {
             const auto whole = static_cast<std::int64_t>(v);
             if (static_cast<double>(whole) == v) return write_integer(out, whole);
