@@ -21,6 +21,8 @@ read_options reading(const options& o, const input_source& src) {
     ro.source = src.source();
     ro.settings = settings_of(o);
     ro.order = o.order;
+    ro.given.angles = o.radians;
+    ro.given.key_fps = o.key_fps.has_value();
     return ro;
 }
 
@@ -124,7 +126,7 @@ input load(const options& o, const input_source& src, warnings& warn, json_readi
             return result;
         }
         json_tracks tracks(result, warn);
-        result.named = read_json(*stream, ro, tracks);
+        result.named = read_json(*stream, ro, tracks, warn);
         tracks.finish();
     } catch (const std::bad_alloc&) {  // the input is held whole: a big one can be too big
         throw error(src.source() + ": out of memory");

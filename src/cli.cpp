@@ -19,6 +19,7 @@ struct raw_flags {
     std::optional<int> precision;
     std::optional<double> key_fps;
     std::optional<int> jobs;
+    std::string expected, actual;  // compare's files
 };
 
 template <std::size_t N>
@@ -34,17 +35,23 @@ void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
 }
 
-/// Flags for writing rotations, and the angle and quaternion conventions.
+/// The angle and quaternion conventions of the input (and of the output,
+/// for the commands that write rotations).
+void add_convention_flags(CLI::App& sub, options& o, raw_flags& f) {
+    sub.add_option("--euler", f.euler, "Euler sequence of the input, e.g. ZYX (intrinsic) or xyz (extrinsic)");
+    sub.add_option("--quat-order", f.quat_order, "order of quaternion arrays and output columns")
+        ->check(CLI::IsMember({"wxyz", "xyzw"}));
+    sub.add_flag("--radians", o.radians, "angles in radians, input and output (default: degrees)");
+}
+
+/// Flags for writing rotations, and the conventions.
 void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("-o,--output", o.output, "output file (default: standard output)");
     sub.add_option("--to", f.to, "output format (default: extension of -o, else the input format)")
         ->check(CLI::IsMember({"csv", "json", "ndjson"}));
     sub.add_option("--rep", f.rep, "output representation")->check(CLI::IsMember(names(rep_names)));
-    sub.add_option("--euler", f.euler, "Euler sequence of the input, e.g. ZYX (intrinsic) or xyz (extrinsic)");
+    add_convention_flags(sub, o, f);
     sub.add_option("--out-euler", f.out_euler, "Euler sequence of the output (default: --euler)");
-    sub.add_option("--quat-order", f.quat_order, "order of quaternion arrays and output columns")
-        ->check(CLI::IsMember({"wxyz", "xyzw"}));
-    sub.add_flag("--radians", o.radians, "angles in radians, input and output (default: degrees)");
     auto* deg = sub.add_flag("--out-degrees", f.out_degrees, "output angles in degrees");
     auto* rad = sub.add_flag("--out-radians", f.out_radians, "output angles in radians");
     deg->excludes(rad);
@@ -98,7 +105,16 @@ void finish(options& o, const raw_flags& f) {
         check_rate("--key-fps", *f.key_fps);
         o.key_fps = f.key_fps;
     }
+    for (double t : o.ts)
+        if (!std::isfinite(t)) throw usage_error(fmt::format("-t: expected a finite number, got {}", t));
+    if (o.cmd == command::compare) o.inputs = {f.expected, f.actual};
+    if (o.cmd == command::info && o.output && (o.output->ends_with(".csv") || o.output->ends_with(".ndjson")))
+        throw usage_error(fmt::format("-o {}: info writes text, or JSON with --to json or a .json name", *o.output));
 }
+
+/// The command whose name is nearest `word` (fewest letters changed,
+/// added or taken away), to suggest for a misspelt one.
+std::string_view nearest_command(std::string_view word);
 
 }  // namespace
 
@@ -139,18 +155,23 @@ void define_slerp(CLI::App& sub, options& o, raw_flags& f) {
 }
 
 void define_compare(CLI::App& sub, options& o, raw_flags& f) {
-    sub.add_option("EXPECTED", o.inputs, "the key: expected rotations")->expected(2)->required();
+    sub.add_option("EXPECTED", f.expected, "the key: expected rotations ('-': standard input)")->required();
+    sub.add_option("ACTUAL", f.actual, "the answer to grade ('-': standard input)")->required();
     sub.add_option("--tol", o.tol_deg, "largest rotation difference in degrees (default 0.01)");
     sub.add_option("--tol-translation", o.tol_translation, "largest translation difference (default 0.001)");
     sub.add_option("--report", f.report, "json: a JSON report on standard output")->check(CLI::IsMember({"json"}));
+    sub.add_option("-o,--output", o.output, "file for the summary, or the report (default: standard output)");
     add_input_flags(sub, o, f);
-    add_output_flags(sub, o, f);
+    add_convention_flags(sub, o, f);
 }
 
 void define_info(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
+    sub.add_option("-o,--output", o.output, "output file; a .json name writes JSON (default: standard output)");
+    sub.add_option("--to", f.to, "json: a JSON description instead of text")->check(CLI::IsMember({"json"}));
+    sub.add_option("--precision", f.precision, "digits after the decimal point in the text (default 6)");
     add_input_flags(sub, o, f);
-    add_output_flags(sub, o, f);
+    add_convention_flags(sub, o, f);
 }
 
 struct command_definition {
@@ -168,6 +189,27 @@ constexpr std::array<command_definition, 5> commands = {{
     {"info", "describe a track: keys, duration, per-segment angles, warnings", command::info, define_info},
 }};
 
+std::string_view nearest_command(std::string_view word) {
+    const auto distance = [](std::string_view a, std::string_view b) {
+        std::vector<std::size_t> row(b.size() + 1);
+        for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+        for (std::size_t i = 1; i <= a.size(); ++i) {
+            std::size_t diagonal = row[0];
+            row[0] = i;
+            for (std::size_t j = 1; j <= b.size(); ++j) {
+                const std::size_t above = row[j];
+                row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+                diagonal = above;
+            }
+        }
+        return row[b.size()];
+    };
+    const auto best = std::min_element(commands.begin(), commands.end(), [&](const auto& x, const auto& y) {
+        return distance(word, x.name) < distance(word, y.name);
+    });
+    return best->name;
+}
+
 }  // namespace
 
 std::optional<options> parse_command_line(int argc, const char* const* argv, std::ostream& out) {
@@ -181,6 +223,10 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
     // --help and for the error message.
     const std::string_view first = argc > 1 ? argv[1] : "";
     const bool known = std::any_of(commands.begin(), commands.end(), [&](const auto& c) { return first == c.name; });
+    if (!known && !first.empty() && first.front() != '-')
+        throw usage_error(fmt::format("unknown command '{}': expected resample, convert, slerp, compare or info "
+                                      "(did you mean '{}'?)",
+                                      first.substr(0, 40), nearest_command(first)));
     std::array<CLI::App*, commands.size()> subs{};
     for (std::size_t i = 0; i < commands.size(); ++i) {
         subs[i] = app.add_subcommand(commands[i].name, commands[i].description);
@@ -198,7 +244,10 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
         out << "keyrot " << version << '\n';
         return std::nullopt;
     } catch (const CLI::ParseError& e) {
-        throw usage_error(fmt::format("{} (see keyrot --help)", e.what()));
+        if (!known) throw usage_error("expected a command: resample, convert, slerp, compare or info (see keyrot --help)");
+        std::string what = e.what();
+        if (what == "ACTUAL is required") what = "ACTUAL is missing: expected two files, EXPECTED ACTUAL";
+        throw usage_error(fmt::format("{}: {} (see keyrot {} --help)", first, what, first));
     }
     for (std::size_t i = 0; i < commands.size(); ++i)
         if (subs[i]->parsed()) o.cmd = commands[i].cmd;

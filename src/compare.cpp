@@ -21,33 +21,22 @@ namespace {
 /// long tracks compare in n log n.
 class key_finder {
 public:
-    explicit key_finder(const track& t) : keys_(t.keys) {
+    /// `by_frame`: frame numbers count at the same rate in both tracks.
+    key_finder(const track& t, bool by_frame) : keys_(t.keys), by_frame_(by_frame) {
         for (std::size_t i = 0; i < keys_.size(); ++i) {
-            if (keys_[i].frame) frames_.emplace_back(*keys_[i].frame, i);
+            if (keys_[i].frame && by_frame) frames_.emplace_back(*keys_[i].frame, i);
             else without_frame_.push_back(i);
         }
         std::sort(frames_.begin(), frames_.end());
     }
 
     std::optional<std::size_t> find(const key& k) const {
-        // Among keys in increasing time, those too early form a prefix, as
-        // k.time - other.time only falls as other.time grows: the first key
-        // after it is the one candidate.
-        const auto too_early = [&k](const key& other) {
-            return other.time < k.time && k.time - other.time > tol::match_time;
-        };
-        const auto if_near = [&](std::size_t i) -> std::optional<std::size_t> {
-            if (std::fabs(k.time - keys_[i].time) <= tol::match_time) return i;
-            return std::nullopt;
-        };
-        if (!k.frame) {
-            const auto it = std::partition_point(keys_.begin(), keys_.end(), too_early);
-            if (it == keys_.end()) return std::nullopt;
-            return if_near(static_cast<std::size_t>(it - keys_.begin()));
-        }
+        if (!by_frame_) return find_by_time(k);
+        if (!k.frame) return find_by_time(k);
         const auto unframed = std::partition_point(without_frame_.begin(), without_frame_.end(),
-                                                   [&](std::size_t i) { return too_early(keys_[i]); });
-        std::optional<std::size_t> found = unframed == without_frame_.end() ? std::nullopt : if_near(*unframed);
+                                                   [&](std::size_t i) { return too_early(keys_[i], k); });
+        std::optional<std::size_t> found;
+        if (unframed != without_frame_.end() && near(keys_[*unframed], k)) found = *unframed;
         const auto framed = std::lower_bound(frames_.begin(), frames_.end(), std::pair(*k.frame, std::size_t{0}));
         if (framed != frames_.end() && framed->first == *k.frame)
             found = std::min(found.value_or(framed->second), framed->second);
@@ -55,7 +44,22 @@ public:
     }
 
 private:
+    // Among keys in increasing time, those too early form a prefix, as
+    // k.time - other.time only falls as other.time grows: the first key
+    // after it is the one candidate.
+    static bool too_early(const key& other, const key& k) {
+        return other.time < k.time && k.time - other.time > tol::match_time;
+    }
+    static bool near(const key& other, const key& k) { return std::fabs(k.time - other.time) <= tol::match_time; }
+
+    std::optional<std::size_t> find_by_time(const key& k) const {
+        const auto it = std::partition_point(keys_.begin(), keys_.end(), [&k](const key& other) { return too_early(other, k); });
+        if (it == keys_.end() || !near(*it, k)) return std::nullopt;
+        return static_cast<std::size_t>(it - keys_.begin());
+    }
+
     const std::vector<key>& keys_;
+    bool by_frame_;
     std::vector<std::pair<double, std::size_t>> frames_;  ///< (frame, index) of the keys that have one
     std::vector<std::size_t> without_frame_;
 };
@@ -78,7 +82,10 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
     for (const track& e : expected) {
         const auto named = by_name.find(e.name);
         const track* a = named == by_name.end() ? nullptr : named->second;
-        const std::optional<key_finder> finder = a ? std::optional<key_finder>(*a) : std::nullopt;
+        if (!a) out.missing_tracks.push_back(e.name);
+        // Frame numbers at different rates are different times: matched by time.
+        const std::optional<key_finder> finder =
+            a ? std::optional<key_finder>(std::in_place, *a, a->key_fps == e.key_fps) : std::nullopt;
         for (const key& k : e.keys) {
             const auto j = finder ? finder->find(k) : std::nullopt;
             if (!j) {
@@ -106,6 +113,10 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
             out.rows.push_back(r);
         }
     }
+    std::unordered_map<std::string_view, bool> in_expected;
+    for (const track& e : expected) in_expected.emplace(e.name, true);
+    for (const track& a : actual)
+        if (!in_expected.contains(a.name)) out.extra_tracks.push_back(a.name);
     for (std::size_t i = 0; i < actual.size(); ++i)
         for (std::size_t j = 0; j < actual[i].keys.size(); ++j)
             if (!used[i][j]) out.rows.push_back(unmatched(actual[i], actual[i].keys[j], "only in ACTUAL"));

@@ -30,6 +30,7 @@ track_info describe(const track& t) {
         if (std::find(info.given_as.begin(), info.given_as.end(), k.given_as) == info.given_as.end())
             info.given_as.push_back(k.given_as);
         if (k.renormalised) info.renormalised.push_back(i);
+        info.signed_keys = info.signed_keys || (k.given_as != rep::matrix && k.given_as != rep::matrix4);
         if (k.euler && t.euler && gimbal_distance(k.rotation, *t.euler) <= to_radians(near_gimbal_deg, angle_unit::degrees))
             info.near_gimbal.push_back(i);
         quat aligned = k.rotation;

@@ -1,6 +1,7 @@
 // The grading and teaching commands: slerp, compare, info.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <ostream>
 
 #include "commands.hpp"
@@ -146,10 +147,27 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
     const tolerances tol{o.tol_deg, o.tol_translation};
     const comparison c = compare_tracks(expected.tracks, actual.tracks, tol);
 
+    for (const track& e : expected.tracks) {
+        const auto a = std::find_if(actual.tracks.begin(), actual.tracks.end(), [&](const track& t) { return t.name == e.name; });
+        if (a != actual.tracks.end() && a->key_fps != e.key_fps) {
+            print_error(err, fmt::format("{} counts frames at {} fps, {} at {} fps: rows are matched by time",
+                                         expected.source, e.key_fps, actual.source, a->key_fps));
+            break;
+        }
+    }
+    // A track missing from either file is said once, not row by row.
+    for (const std::string& name : c.missing_tracks)
+        print_error(err, fmt::format("{}: track '{}' missing from ACTUAL", actual.source, name));
+    for (const std::string& name : c.extra_tracks)
+        print_error(err, fmt::format("{}: track '{}' only in ACTUAL", actual.source, name));
+    const auto whole_track = [&](const row_difference& r) {
+        return std::find(c.missing_tracks.begin(), c.missing_tracks.end(), r.track) != c.missing_tracks.end() ||
+               std::find(c.extra_tracks.begin(), c.extra_tracks.end(), r.track) != c.extra_tracks.end();
+    };
     constexpr std::size_t max_reasons = 10;
     std::size_t told = 0;
     for (const row_difference& r : c.rows) {
-        if (r.pass()) continue;
+        if (r.pass() || whole_track(r)) continue;
         if (told++ < max_reasons) print_error(err, actual.source + ": " + row_place(r) + ": " + r.problem);
     }
     if (told > max_reasons) print_error(err, fmt::format("{}: {} more rows failed", actual.source, told - max_reasons));
@@ -187,15 +205,14 @@ std::string info_text(const input& doc, const std::vector<track_info>& infos, st
     for (const track_info& t : infos) {
         out += fmt::format("{}: {} key{}, {} s to {} s, given as {}\n", t.name.empty() ? "track" : "track " + t.name,
                            t.keys, t.keys == 1 ? "" : "s", num(t.start), num(t.end), rep_list(t.given_as));
-        std::vector<std::size_t> long_way;
         for (std::size_t i = 0; i < t.segments.size(); ++i) {
             const segment_info& s = t.segments[i];
             if (i == 0) out += "  segment  angle (deg)  speed (deg/s)\n";
+            const bool long_way = s.direct_long_way && t.signed_keys;
             out += fmt::format("  {:<7}  {:<11}  {}{}\n", fmt::format("{}-{}", i, i + 1), num(s.angle_deg),
-                               num(s.speed_deg_s), s.direct_long_way ? "  (long way with --path direct)" : "");
-            if (s.direct_long_way) long_way.push_back(i);
+                               num(s.speed_deg_s), long_way ? "  (long way with --path direct)" : "");
         }
-        out += fmt::format("  keys flipped by --path shortest: {}\n", index_list(t.flipped));
+        if (t.signed_keys) out += fmt::format("  keys flipped by --path shortest: {}\n", index_list(t.flipped));
         out += fmt::format("  keys renormalised: {}\n", index_list(t.renormalised));
         out += fmt::format("  Euler keys within {} deg of gimbal lock: {}\n", near_gimbal_deg, index_list(t.near_gimbal));
     }
@@ -217,12 +234,12 @@ std::string info_json(const input& doc, const std::vector<track_info>& infos) {
         for (rep r : t.given_as) reps.push_back(fmt::format("\"{}\"", to_string(r)));
         for (const segment_info& s : t.segments)
             segments.push_back(fmt::format("{{\"angle\": {}, \"speed\": {}, \"direct_long_way\": {}}}", num(s.angle_deg),
-                                           num(s.speed_deg_s), s.direct_long_way));
+                                           num(s.speed_deg_s), t.signed_keys ? fmt::format("{}", s.direct_long_way) : "null"));
         out += fmt::format(
             "{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}], \"segments\": [{}], "
             "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}}}",
             n ? "," : "", json_quote(t.name), t.keys, num(t.start), num(t.end), fmt::join(reps, ", "),
-            fmt::join(segments, ", "), list(t.flipped), list(t.renormalised), list(t.near_gimbal));
+            fmt::join(segments, ", "), t.signed_keys ? list(t.flipped) : "null", list(t.renormalised), list(t.near_gimbal));
     }
     out += "]}\n";
     return out;
@@ -232,7 +249,7 @@ std::string info_json(const input& doc, const std::vector<track_info>& infos) {
 
 int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
     const std::vector<std::string> inputs = o.inputs.empty() ? std::vector<std::string>{"-"} : o.inputs;
-    const bool as_json = o.to == format::json || o.to == format::ndjson;
+    const bool as_json = o.to == format::json || (o.output && format_of_path(*o.output) == format::json);
     std::string text;
     int status = 0;
     for (const std::string& name : inputs) {

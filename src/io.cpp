@@ -57,7 +57,7 @@ void check_track_name(const std::string& name, const std::string& where) {
 }
 
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn) {
-    if (f == format::json) return make_json_reader(in, opts);
+    if (f == format::json) return make_json_reader(in, opts, warn);
     if (f == format::ndjson) return make_ndjson_reader(in, opts, warn);
     return make_csv_reader(in, opts, warn);
 }
@@ -89,6 +89,18 @@ rotation_values row_values(const sample& s, const write_options& opts, warnings&
     if (r.gimbal_lock)
         warn.once("gimbal", fmt::format("gimbal lock in Euler sequence {}: the third angle is set to 0", opts.euler->name));
     return r;
+}
+
+std::string settings_members(const table_info& info, const write_options& opts) {
+    std::string out;
+    if (info.fps) out += "\"fps\": ", append_number(out, *info.fps, std::nullopt), out += ", ";
+    if (info.how) fmt::format_to(std::back_inserter(out), "\"method\": \"{}\", ", to_string(*info.how));
+    fmt::format_to(std::back_inserter(out), "\"rep\": \"{}\", \"angles\": \"{}\"", to_string(opts.representation),
+                   to_string(opts.angles));
+    if (opts.representation == rep::euler) fmt::format_to(std::back_inserter(out), ", \"euler\": \"{}\"", opts.euler->name);
+    if (opts.representation == rep::quat)
+        fmt::format_to(std::back_inserter(out), ", \"quat_order\": \"{}\"", to_string(opts.order));
+    return out;
 }
 
 std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,

@@ -11,9 +11,15 @@
 #include <optional>
 #include <utility>
 
+#include "json_keys.hpp"
+#include "keyrot/flat_json.hpp"
 
 namespace keyrot {
 namespace {
+
+/// The line before the header in which keyrot states its settings:
+/// `# keyrot {"fps": 24, "rep": "quat", ...}` (settings_members).
+constexpr std::string_view settings_comment = "# keyrot ";
 
 constexpr std::array<std::string_view, 7> matrix4_only = {"m03", "m13", "m23", "m30", "m31", "m32", "m33"};
 
@@ -103,6 +109,7 @@ columns parse_header(const std::vector<std::string_view>& cells, const std::stri
     };
     cols.track = claim("track");
     cols.time = claim("time");
+    if (!cols.time) cols.time = claim("t");  // slerp's tables
     cols.frame = claim("frame");
     if (!cols.time && !cols.frame) throw input_error(where, "no time column: expected a 'time' or 'frame' column");
 
@@ -266,6 +273,11 @@ public:
             if (skipped(line, source, lines_.number())) {
                 const auto content = trim(line);
                 if (content.empty()) continue;  // a blank line
+                if (content.starts_with(settings_comment)) {
+                    read_settings(content.substr(settings_comment.size()), opts, lines_.number(), warn);
+                    comment_line = 0;
+                    continue;
+                }
                 comment_line = names_time(content.substr(1)) ? lines_.number() : 0;
                 if (comment_line != 0) comment = content.substr(1);
                 continue;
@@ -280,6 +292,10 @@ public:
                 return;
             }
             const std::string where = fmt::format("{}:{}", source, lines_.number());
+            if (const char c = trim(line).front(); c == '{' || c == '[')
+                throw input_error(where, fmt::format("expected a CSV header, got what looks like JSON ('{}'): "
+                                                     "--from json or --from ndjson reads it as such",
+                                                     c));
             const auto& cells = splitter.split(line, source, lines_.number());
             if (std::all_of(cells.begin(), cells.end(), [](auto c) { return parse_number(c).has_value(); }))
                 throw input_error(where, "expected a header line naming the columns (time or frame, and "
@@ -311,6 +327,16 @@ public:
     std::unique_ptr<line_parser> parser() const override { return std::make_unique<csv_rows>(*rows_); }
 
 private:
+    /// The settings of a "# keyrot {...}" line, over the flags'.
+    void read_settings(std::string_view object, const read_options& opts, std::size_t line_no, warnings& warn) {
+        const std::string where = fmt::format("{}:{}", opts.source, line_no);
+        flat_json settings;
+        if (!settings.parse(object) || !settings.root().is_object())
+            throw input_error(where, fmt::format("expected a JSON object of settings after '{}'", trim(settings_comment)));
+        quat_order order = opts.order;  // (CSV names its quaternion columns)
+        detail::apply_fields(settings.root(), settings_, order, where, detail::settings_object::header, opts, warn);
+    }
+
     /// Whether a line has a cell 'time' or 'frame' (any case, unquoted).
     static bool names_time(std::string_view line) {
         for (std::size_t start = 0; start <= line.size();) {
@@ -365,7 +391,8 @@ public:
         for (auto c : rotation_columns(opts.representation, opts.order)) header.push_back(c);
         if (translation_)
             for (auto c : translation_columns) header.push_back(c);
-        fmt::format_to(std::back_inserter(out_), "{}\n", fmt::join(header, ","));
+        fmt::format_to(std::back_inserter(out_), "{}{{{}}}\n{}\n", settings_comment, settings_members(info, opts),
+                       fmt::join(header, ","));
     }
 
     csv_writer(const csv_writer& other, std::string& out)
@@ -387,8 +414,9 @@ public:
             first = false;
             text.number(v, precision);
         };
+        // --precision rounds values, never when they are: times read back as they were.
         if (frame_) cell(*s.frame, std::nullopt);
-        if (time_) cell(s.time, opts_.precision);
+        if (time_) cell(s.time, std::nullopt);
         const rotation_values r = row_values(s, opts_, warn_);
         for (std::size_t i = 0; i < r.size; ++i) cell(r.v[i], opts_.precision);
         if (translation_) {

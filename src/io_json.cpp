@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <array>
+#include <set>
+#include <utility>
+#include <vector>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
@@ -16,6 +19,8 @@ namespace {
 
 // Members in the document's order: tracks come out in input order.
 using json = nlohmann::ordered_json;
+
+using detail::join_path;
 
 /// Deeper nesting than this is refused before parsing, so that a hostile
 /// document cannot exhaust the parser's stack.
@@ -78,17 +83,55 @@ void check_depth(std::string_view text, std::string_view source, std::size_t fir
     }
 }
 
+/// Refuses a name that appears twice in one object, which nlohmann-json
+/// would let the second replace the first (flat_json declines such text).
+class unique_names {
+public:
+    explicit unique_names(std::string_view source) : source_(source) {}
+    bool operator()(int, json::parse_event_t event, json& parsed) {
+        switch (event) {
+            case json::parse_event_t::object_start: objects_.emplace_back(); break;
+            case json::parse_event_t::object_end: objects_.pop_back(); break;
+            case json::parse_event_t::key: {
+                auto& [names, current] = objects_.back();
+                current = parsed.get<std::string>();
+                if (!names.insert(current).second) {
+                    std::string path;
+                    for (std::size_t i = 0; i + 1 < objects_.size(); ++i) path = join_path(path, objects_[i].second);
+                    throw input_error(fmt::format("{}: {}", source_, path.empty() ? "document" : path),
+                                      fmt::format("'{}' appears twice: expected each name once in an object",
+                                                  current.substr(0, 40)));
+                }
+                break;
+            }
+            default: break;
+        }
+        return true;
+    }
+
+private:
+    std::string_view source_;
+    std::vector<std::pair<std::set<std::string>, std::string>> objects_;  // names so far, the current one
+};
+
+/// "source:line:column" of a byte offset, so that an error in a long line
+/// can be found.
+std::string place_of(std::string_view text, std::size_t byte, std::string_view source, std::size_t first_line) {
+    byte = std::min(byte, text.size());
+    const std::size_t line_start = byte == 0 ? 0 : text.rfind('\n', byte - 1) + 1;  // (npos + 1 == 0)
+    return fmt::format("{}:{}:{}", source, first_line + line_of(text, byte) - 1, byte - line_start + 1);
+}
+
 json parse(std::string_view text, std::string_view source, std::size_t first_line) {
     check_depth(text, source, first_line);
     try {
-        return json::parse(text.begin(), text.end());
+        return json::parse(text.begin(), text.end(), unique_names(source));
     } catch (const json::parse_error& e) {
         std::string what = e.what();
         // "[json.exception.parse_error.101] parse error at line 1, column 5: ..." -> the part after ": "
         const auto colon = what.find(": ");
         if (colon != std::string::npos) what = what.substr(colon + 2);
-        throw input_error(fmt::format("{}:{}", source, first_line + line_of(text, e.byte == 0 ? 0 : e.byte - 1) - 1),
-                          "invalid JSON: " + what);
+        throw input_error(place_of(text, e.byte == 0 ? 0 : e.byte - 1, source, first_line), "invalid JSON: " + what);
     } catch (const json::out_of_range& e) {
         // A number too large for a double: "number overflow parsing '1e999'".
         const std::string what = e.what();
@@ -101,15 +144,15 @@ json parse(std::string_view text, std::string_view source, std::size_t first_lin
 }
 
 using detail::apply_fields;
-using detail::join_path;
 using detail::key_object_reader;
+using detail::settings_object;
 
 /// A track object ({"keys": [...]}, {"frames": [...]}) or a bare array of keys.
 template <class Value>
 void read_track(Value j, std::string name, const std::string& path, key_settings settings, quat_order order,
-                const read_options& opts, raw_key_sink& sink) {
+                const read_options& opts, raw_key_sink& sink, warnings& warn) {
     const std::string where = fmt::format("{}: {}", opts.source, path.empty() ? "document" : path);
-    apply_fields(j, settings, order, where);
+    apply_fields(j, settings, order, where, path.empty() ? settings_object::document : settings_object::track, opts, warn);
     std::optional<Value> keys = j;
     std::string field;
     bool frames_doc = false;
@@ -136,26 +179,26 @@ void read_track(Value j, std::string name, const std::string& path, key_settings
 
 /// Returns whether the document names its tracks.
 template <class Value>
-bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink) {
+bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink, warnings& warn) {
     key_settings settings = opts.settings;
     quat_order order = opts.order;
     const auto tracks = j.is_object() ? j.member("tracks") : std::nullopt;
     if (tracks) {
         const std::string where = fmt::format("{}: document", opts.source);
-        apply_fields(j, settings, order, where);
+        apply_fields(j, settings, order, where, settings_object::document, opts, warn);
         if (!tracks->is_object())
             throw input_error(where, fmt::format("'tracks': expected an object of named tracks, got {}", tracks->type_name()));
         if (tracks->size() == 0) throw input_error(where, "'tracks' is empty: expected at least one track");
         tracks->members([&](std::string_view name_view, Value value) {
             const std::string name(name_view);
             check_track_name(name, where);
-            read_track(value, name, "tracks." + name, settings, order, opts, sink);
+            read_track(value, name, "tracks." + name, settings, order, opts, sink, warn);
         });
         return true;
     }
     if (!j.is_object() && !j.is_array())
         throw input_error(opts.source, fmt::format("expected a JSON object or array, got {}", j.type_name()));
-    read_track(j, "", "", settings, order, opts, sink);
+    read_track(j, "", "", settings, order, opts, sink, warn);
     return false;
 }
 
@@ -169,19 +212,19 @@ public:
 
 }  // namespace
 
-bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink) {
+bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, warnings& warn) {
     std::string text;
     text.reserve(static_cast<std::size_t>(std::max<std::streamsize>(0, in.rdbuf()->in_avail())));
     std::array<char, std::size_t{1} << 16> chunk;
     while (const auto got = in.rdbuf()->sgetn(chunk.data(), chunk.size())) text.append(chunk.data(), static_cast<std::size_t>(got));
     flat_json flat;
-    if (flat.parse(text)) return read_json_value(flat.root(), opts, sink);
-    return read_json_value(dom_value(parse(text, opts.source, 1)), opts, sink);
+    if (flat.parse(text)) return read_json_value(flat.root(), opts, sink, warn);
+    return read_json_value(dom_value(parse(text, opts.source, 1)), opts, sink, warn);
 }
 
-raw_document read_json(std::istream& in, const read_options& opts, warnings&) {
+raw_document read_json(std::istream& in, const read_options& opts, warnings& warn) {
     raw_document_sink sink;
-    sink.doc.named = read_json(in, opts, sink);
+    sink.doc.named = read_json(in, opts, sink, warn);
     return std::move(sink.doc);
 }
 
@@ -227,10 +270,45 @@ private:
     flat_json fast_{detail::max_key_values};  // most lines; the rest, and all errors, by nlohmann-json
 };
 
+/// Whether an NDJSON line's object is a header of settings, as keyrot
+/// writes first ({"fps": 24, "rep": "quat", "angles": "degrees"}), rather
+/// than a key: it has neither a time nor a rotation.
+template <class Value>
+bool is_header(Value j) {
+    if (!j.is_object()) return false;
+    for (const char* field : {"time", "t", "frame", "quat", "axis", "rotvec", "matrix"})
+        if (j.member(field)) return false;
+    const auto euler = j.member("euler");
+    return !euler || euler->is_string();
+}
+
 class ndjson_reader final : public key_reader {
 public:
-    ndjson_reader(std::istream& in, const read_options& opts)
-        : lines_(in), settings_(opts.settings), keys_(opts.source, opts.order) {}
+    ndjson_reader(std::istream& in, const read_options& opts, warnings& warn)
+        : lines_(in), settings_(opts.settings), keys_(opts.source, opts.order) {
+        std::string_view line;
+        bool found = false;
+        while (!found && lines_.next(line)) found = !trim(line).empty();
+        if (!found) return;
+        // The first line is a header when it parses as one; anything else
+        // is left to the key parser, which words the error.
+        flat_json fast;
+        std::optional<json> slow;
+        const bool parsed = fast.parse(line);
+        if (!parsed) slow = json::parse(line.begin(), line.end(), nullptr, false);
+        const bool header = parsed ? is_header(fast.root()) : !slow->is_discarded() && is_header(dom_value(*slow));
+        if (!header) {
+            first_line_ = line;
+            first_line_no_ = lines_.number();
+            return;
+        }
+        const std::string where = fmt::format("{}:{}", opts.source, lines_.number());
+        quat_order order = opts.order;
+        if (parsed) apply_fields(fast.root(), settings_, order, where, settings_object::header, opts, warn);
+        else apply_fields(dom_value(keyrot::parse(line, opts.source, lines_.number())), settings_, order, where,
+                          settings_object::header, opts, warn);
+        keys_ = ndjson_lines(opts.source, order);
+    }
 
     bool named() const override { return keys_.named().value_or(false); }
     location start() const override { return {}; }
@@ -239,6 +317,11 @@ public:
     bool next(std::string& track, raw_key& k) override { return next_parsed(keys_, track, k); }
 
     bool next_line(std::string_view& line, std::size_t& line_no) override {
+        if (first_line_no_ != 0) {
+            line = first_line_;
+            line_no = std::exchange(first_line_no_, 0);
+            return true;
+        }
         if (!lines_.next(line)) return false;
         line_no = lines_.number();
         return true;
@@ -256,12 +339,14 @@ private:
     line_reader lines_;
     key_settings settings_;
     ndjson_lines keys_;
+    std::string first_line_;        // the first line, when it holds a key: read with the header test
+    std::size_t first_line_no_ = 0;  // its number until next_line() gives it; then 0
 };
 
 }  // namespace
 
-std::unique_ptr<key_reader> make_ndjson_reader(std::istream& in, const read_options& opts, warnings&) {
-    return std::make_unique<ndjson_reader>(in, opts);
+std::unique_ptr<key_reader> make_ndjson_reader(std::istream& in, const read_options& opts, warnings& warn) {
+    return std::make_unique<ndjson_reader>(in, opts, warn);
 }
 
 namespace {
@@ -270,16 +355,10 @@ class json_writer final : public table_writer {
 public:
     json_writer(std::string& out, const table_info& info, const write_options& opts, warnings& warn, bool lines)
         : out_(out), info_(info), opts_(opts), warn_(warn), lines_(lines) {
-        if (lines_) return;
-        out_ += '{';
-        if (info.fps) out_ += "\"fps\": ", append_number(out_, *info.fps, std::nullopt), out_ += ", ";
-        if (info.how) fmt::format_to(std::back_inserter(out_), "\"method\": \"{}\", ", to_string(*info.how));
-        fmt::format_to(std::back_inserter(out_), "\"rep\": \"{}\", \"angles\": \"{}\"", to_string(opts.representation),
-                       to_string(opts.angles));
-        if (opts.representation == rep::euler) fmt::format_to(std::back_inserter(out_), ", \"euler\": \"{}\"", opts.euler->name);
-        if (opts.representation == rep::quat)
-            fmt::format_to(std::back_inserter(out_), ", \"quat_order\": \"{}\"", to_string(opts.order));
-        if (info.named) out_ += ", \"tracks\": {";
+        // NDJSON: a header line of the settings, which no key line has.
+        out_ += '{' + settings_members(info, opts);
+        if (lines_) out_ += "}\n";
+        else if (info.named) out_ += ", \"tracks\": {";
     }
 
     json_writer(const json_writer& other, std::string& out)
@@ -312,7 +391,7 @@ public:
         if (!with_frame || s.has_time) {
             if (with_frame) text.put(", ");
             text.put('"'), text.put(info_.time_name), text.put("\": ");
-            text.number(s.time, opts_.precision);
+            text.number(s.time, std::nullopt);  // --precision rounds values, never when they are
         }
         write_rotation(text, row_values(s, opts_, warn_));
         if (translation_ && s.translation) {

@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "keyrot/error.hpp"
+#include "keyrot/io.hpp"
 #include "keyrot/layout.hpp"
 #include "keyrot/track.hpp"
 
@@ -34,6 +35,9 @@ public:
         raw_key k;
         k.at = at_;
         k.time = optional_number("time");
+        // slerp's tables name their parameter "t".
+        const std::optional<double> t = k.time ? std::nullopt : optional_number("t");
+        if (t) k.time = t;
         k.frame = optional_number("frame");
         if (!k.time && !k.frame) fail("expected a 'time' or a 'frame'");
         if (k.time && k.frame && !frames_doc_) fail("a key has both 'time' and 'frame': expected exactly one");
@@ -41,6 +45,10 @@ public:
         const auto quat = obj_.member("quat"), axis = obj_.member("axis"), rotvec = obj_.member("rotvec"),
                    euler = obj_.member("euler"), matrix = obj_.member("matrix"), angle = obj_.member("angle");
         const int rotations = !!quat + !!axis + !!rotvec + !!euler + !!matrix;
+        const auto translation = obj_.member("translation");
+        // Counting the members read finds one that is not, without a look at each.
+        const int read = !!k.time + !!k.frame + rotations + !!angle + !!translation + obj_.member("track").has_value();
+        if (obj_.size() > static_cast<std::size_t>(read)) k.unknown = first_unknown_member();
         if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
         if (rotations > 1) fail("more than one rotation: expected exactly one of 'quat', 'axis', 'rotvec', 'euler', 'matrix'");
         if (angle && !axis) fail("'angle' without 'axis'");
@@ -76,7 +84,7 @@ public:
         } else {
             read_matrix(*matrix, k);
         }
-        if (const auto translation = obj_.member("translation")) {
+        if (translation) {
             const auto v = numbers(*translation, "translation", 3);
             k.translation = vec3{v[0], v[1], v[2]};
         }
@@ -84,6 +92,17 @@ public:
     }
 
 private:
+    std::string first_unknown_member() const {
+        constexpr std::array<std::string_view, 11> known = {"time", "t",     "frame",  "quat",        "axis", "angle",
+                                                            "rotvec", "euler", "matrix", "translation", "track"};
+        std::string name;
+        obj_.members([&](std::string_view member, Value) {
+            if (name.empty() && std::find(known.begin(), known.end(), member) == known.end())
+                name = member.empty() ? "\"\"" : member;
+        });
+        return name;
+    }
+
     [[noreturn]] void fail(const std::string& message) const { throw input_error(where(source_, at_), message); }
 
     /// Messages name the field: `field` is its name, or a callable that
@@ -137,26 +156,54 @@ private:
     bool frames_doc_;
 };
 
+/// Which members an object that states settings may have besides them.
+enum class settings_object {
+    document,  ///< "keys", "frames" or "tracks"
+    track,     ///< "keys" or "frames"
+    header,    ///< none: an NDJSON header line, a CSV "# keyrot" line
+};
+
+/// Fields keyrot writes that say how a document was made, and that change
+/// nothing on reading.
+inline bool descriptive_field(std::string_view name) { return name == "method" || name == "rep"; }
+
 /// Applies a document's own fields ("angles", "euler", "quat_order", "fps")
-/// over the settings it inherits.
+/// over the settings it inherits. Where a flag the user gave says
+/// otherwise, the document wins and says so; a field keyrot does not know
+/// is reported by unknown_field.
 template <class Value>
-void apply_fields(Value obj, key_settings& s, quat_order& order, const std::string& where) {
+void apply_fields(Value obj, key_settings& s, quat_order& order, const std::string& where, settings_object kind,
+                  const read_options& opts, warnings& warn) {
     if (!obj.is_object()) return;
+    obj.members([&](std::string_view name, Value) {
+        const bool known = name == "angles" || name == "euler" || name == "quat_order" || name == "fps" ||
+                           descriptive_field(name) ||
+                           (kind != settings_object::header && (name == "keys" || name == "frames")) ||
+                           (kind == settings_object::document && name == "tracks");
+        if (!known) unknown_field(name, where, s, warn);
+    });
     auto text = [&](const char* field) -> std::optional<std::string> {
         const auto v = obj.member(field);
         if (!v) return std::nullopt;
         if (!v->is_string()) throw input_error(where, fmt::format("'{}': expected a string, got {}", field, v->type_name()));
         return std::string(v->string());
     };
+    const auto conflict = [&](const char* field, bool given, const std::string& flag) {
+        if (given) warn.once(fmt::format("conflict {}", field), fmt::format("the file's '{}' is used, not {}", field, flag));
+    };
     if (auto a = text("angles")) {
         const auto u = parse_angle_unit(*a);
         if (!u) throw input_error(where, fmt::format("'angles': expected \"degrees\" or \"radians\", got \"{}\"", *a));
+        if (*u != opts.settings.angles) conflict("angles", opts.given.angles, "--radians");
         s.angles = *u;
     }
     if (auto e = text("euler")) {
-        s.euler = parse_euler_seq(*e);
-        if (!s.euler)
+        const auto seq = parse_euler_seq(*e);
+        if (!seq)
             throw input_error(where, fmt::format("'euler': expected a sequence like \"ZYX\" or \"xyz\", got \"{}\"", *e));
+        if (opts.settings.euler && seq->name != opts.settings.euler->name)
+            conflict("euler", true, "--euler " + opts.settings.euler->name);
+        s.euler = seq;
     }
     if (auto o = text("quat_order")) {
         const auto q = parse_quat_order(*o);
@@ -166,6 +213,8 @@ void apply_fields(Value obj, key_settings& s, quat_order& order, const std::stri
     if (const auto f = obj.member("fps")) {
         if (!f->is_number() || !(f->number() > 0) || !std::isfinite(f->number()))
             throw input_error(where, "'fps': expected a positive number");
+        if (f->number() != opts.settings.key_fps)
+            conflict("fps", opts.given.key_fps, fmt::format("--key-fps {}", opts.settings.key_fps));
         s.key_fps = f->number();
     }
 }

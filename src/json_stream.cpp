@@ -209,8 +209,8 @@ private:
 /// which reports them in its own order.
 class json_stream_reader final : public key_reader {
 public:
-    json_stream_reader(std::istream& in, const read_options& opts)
-        : text_(in), opts_(opts), document_(object::kind::document, "", "", opts.settings, opts.order),
+    json_stream_reader(std::istream& in, const read_options& opts, warnings& warn)
+        : text_(in), opts_(opts), warn_(warn), document_(object::kind::document, "", "", opts.settings, opts.order),
           arrays_(std::make_shared<key_arrays>(opts.source)), keys_(arrays_) {
         const char c = text_.peek();
         if (c == '[') {
@@ -302,6 +302,9 @@ private:
         if (name == "angles" || name == "euler" || name == "quat_order" || name == "fps") {
             if (o.keys) decline();  // it would change keys already read
             o.fields += fmt::format("{}\"{}\": {}", o.fields.size() > 1 ? ", " : "", name, value);
+        } else if (!detail::descriptive_field(name)) {
+            unknown_field(name, fmt::format("{}: {}", opts_.source, o.path.empty() ? "document" : o.path), o.settings,
+                          warn_);
         }
     }
 
@@ -323,7 +326,8 @@ private:
         o.fields += '}';
         flat_json fields;
         if (!fields.parse(o.fields)) decline();
-        detail::apply_fields(fields.root(), o.settings, o.order, opts_.source);
+        detail::apply_fields(fields.root(), o.settings, o.order, opts_.source, detail::settings_object::header, opts_,
+                             warn_);
     }
 
     void begin_keys(const object& owner, const std::string& path, const std::string& field) {
@@ -341,6 +345,7 @@ private:
 
     json_text text_;
     read_options opts_;
+    warnings& warn_;
     object document_;
     std::optional<object> tracks_, track_;
     std::vector<object*> open_;  // innermost last
@@ -356,8 +361,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<key_reader> make_json_reader(std::istream& in, const read_options& opts) {
-    return std::make_unique<json_stream_reader>(in, opts);
+std::unique_ptr<key_reader> make_json_reader(std::istream& in, const read_options& opts, warnings& warn) {
+    return std::make_unique<json_stream_reader>(in, opts, warn);
 }
 
 }  // namespace keyrot

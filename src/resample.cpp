@@ -63,10 +63,13 @@ void track_resampler::finish() {
 
 void track_resampler::frames_of(const segment& s) {
     // frames in [t0, t1): at t0 the key itself, inside by the curve; a frame
-    // within tolerance of t1 belongs to the next key
+    // within tolerance of t1 belongs to the next key. Within tolerance of
+    // both (keys closer together than it), the nearer key's, so that at a
+    // key's exact time the frame is that key.
     const auto time = [this] { return next_frame_ / opts_.fps; };
     const auto in_segment = [&] { return time() <= s.t1 - key_tol_; };
-    if (in_segment() && std::fabs(time() - s.t0) <= key_tol_) out(next_frame_, s.q0), ++next_frame_;
+    const double from_start = std::fabs(time() - s.t0);
+    if (from_start <= key_tol_ && from_start <= std::fabs(time() - s.t1)) out(next_frame_, s.q0), ++next_frame_;
     // Dense keys (motion capture at 120 Hz, say) leave most segments without
     // a frame inside: they never set up a curve.
     if (!in_segment()) return;
@@ -107,6 +110,9 @@ void track_resampler::resolve_translations(bool end) {
             if (!end) return;
             if (!keys.empty()) s.translation = keys.back().second;
         } else if (keys[j].first - s.time <= key_tol_ || j == 0) {
+            // Of keys within tolerance, the nearer; one not yet here may be nearer still.
+            while (j + 1 < keys.size() && std::fabs(keys[j + 1].first - s.time) < std::fabs(keys[j].first - s.time)) ++j;
+            if (!end && j + 1 == keys.size() && keys[j].first != s.time && keys[j].first - s.time <= key_tol_) return;
             s.translation = keys[j].second;
         } else if (opts_.how == method::step) {
             s.translation = keys[j - 1].second;

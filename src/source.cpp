@@ -77,24 +77,69 @@ bool write_all(int fd, const char* data, std::size_t size) {
     return true;
 }
 
+/// A temporary file (not memory) holding what `read_some` gives until it
+/// gives 0, unlinked at once so that nothing is left behind however the
+/// process ends. `read_some(buffer, size)` returns the bytes read, or
+/// throws keyrot::error.
+template <class Read>
+int spool(const std::string& source, Read&& read_some) {
+    std::error_code no_directory;
+    const auto directory = std::filesystem::temp_directory_path(no_directory);
+    if (no_directory) {
+        const char* tmpdir = std::getenv("TMPDIR");
+        throw error(fmt::format("cannot store {} in a temporary file: {}{}", source,
+                                tmpdir ? fmt::format("$TMPDIR '{}': ", tmpdir) : "", no_directory.message()));
+    }
+    std::string path = (directory / "keyrot-input-XXXXXX").string();
+    const int fd = ::mkostemp(path.data(), O_CLOEXEC);
+    if (fd < 0) throw error(fmt::format("cannot store {} in '{}': {}", source, path, errno_text()));
+    ::unlink(path.c_str());
+    std::array<char, std::size_t{1} << 16> chunk;
+    try {
+        while (const std::size_t got = read_some(chunk.data(), chunk.size())) {
+            if (!write_all(fd, chunk.data(), got))
+                throw error(fmt::format("cannot store {} in '{}': {}", source, path, errno_text()));
+        }
+    } catch (...) {
+        ::close(fd);
+        throw;
+    }
+    return fd;
+}
+
 }  // namespace
 
 input_source::input_source(const std::string& name, std::istream& stdin_stream)
     : name_(name), source_(source_name(name)) {
     if (name != "-") {
-        fd_ = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
-        if (fd_ < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
+        const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
         struct stat st {};
-        if (::fstat(fd_, &st) == 0 && S_ISDIR(st.st_mode)) {
-            ::close(fd_);
-            throw error(fmt::format("cannot read '{}': it is a directory", name));
+        if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+            fd_ = fd;
+            return;
         }
+        // A pipe, a FIFO, process substitution, /dev/stdin, a device: read
+        // once, as standard input is, into a file that can be read twice.
+        const bool directory = S_ISDIR(st.st_mode);
+        try {
+            if (directory) throw error(fmt::format("cannot read '{}': it is a directory", name));
+            fd_ = spool(fmt::format("'{}'", name), [&](char* buffer, std::size_t size) {
+                ssize_t got;
+                do got = ::read(fd, buffer, size);
+                while (got < 0 && errno == EINTR);
+                if (got < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
+                return static_cast<std::size_t>(got);
+            });
+        } catch (...) {
+            ::close(fd);
+            throw;
+        }
+        ::close(fd);
         return;
     }
     // A file on the process's standard input is read in place, from where
-    // its offset stands (as cat would); anything else goes to a temporary
-    // file (not memory), removed at once so that nothing is left behind
-    // however the process ends.
+    // its offset stands (as cat would); anything else is spooled.
     if (&stdin_stream == &std::cin) {
         struct stat st {};
         if (::fstat(STDIN_FILENO, &st) != 0) throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
@@ -106,25 +151,10 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
             return;
         }
     }
-    std::error_code no_directory;
-    const auto directory = std::filesystem::temp_directory_path(no_directory);
-    if (no_directory) {
-        const char* tmpdir = std::getenv("TMPDIR");
-        throw error(fmt::format("cannot store standard input in a temporary file: {}{}",
-                                tmpdir ? fmt::format("$TMPDIR '{}': ", tmpdir) : "", no_directory.message()));
-    }
-    std::string path = (directory / "keyrot-stdin-XXXXXX").string();
-    fd_ = ::mkostemp(path.data(), O_CLOEXEC);
-    if (fd_ < 0) throw error(fmt::format("cannot store standard input in '{}': {}", path, errno_text()));
-    ::unlink(path.c_str());
-    std::array<char, std::size_t{1} << 16> chunk;
-    while (stdin_stream.read(chunk.data(), chunk.size()) || stdin_stream.gcount() > 0) {
-        if (!write_all(fd_, chunk.data(), static_cast<std::size_t>(stdin_stream.gcount()))) {
-            const std::string reason = errno_text();
-            ::close(fd_);
-            throw error(fmt::format("cannot store standard input in '{}': {}", path, reason));
-        }
-    }
+    fd_ = spool("standard input", [&](char* buffer, std::size_t size) {
+        stdin_stream.read(buffer, static_cast<std::streamsize>(size));
+        return static_cast<std::size_t>(stdin_stream.gcount());
+    });
 }
 
 input_source::~input_source() { ::close(fd_); }

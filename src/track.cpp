@@ -79,6 +79,7 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     out.frame = k.frame;
     out.has_time = k.time.has_value();
     out.time = k.time ? *k.time : *k.frame / s.key_fps;
+    if (!k.unknown.empty()) unknown_field(k.unknown, where(source, k.at), s, warn);
     const auto& v = k.values;
     switch (k.kind) {
         case rep::quat: out.rotation = unit_quaternion(k, s, warn, out.renormalised); break;
@@ -108,6 +109,12 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     return out;
 }
 
+void unknown_field(std::string_view name, const std::string& where, const key_settings& settings, warnings& warn) {
+    const std::string what = fmt::format("unknown field '{}'", name.substr(0, 40));
+    if (settings.strict) throw input_error(where, what + ": expected only fields keyrot reads (--strict)");
+    warn.once("field", fmt::format("ignoring {} ({})", what, where));
+}
+
 void check_order(const key& previous, const key& next, const std::string& source) {
     if (!(next.time > previous.time))
         throw input_error(where(source, next.at), fmt::format("time {} s is not after the previous key's {} s: "
@@ -116,7 +123,7 @@ void check_order(const key& previous, const key& next, const std::string& source
 }
 
 track_builder::track_builder(std::string name, location at, key_settings settings)
-    : at_(std::move(at)), settings_(std::move(settings)), track_{std::move(name), settings_.euler, {}} {}
+    : at_(std::move(at)), settings_(std::move(settings)), track_{std::move(name), settings_.euler, {}, settings_.key_fps} {}
 
 void track_builder::add(const raw_key& raw, warnings& warn) {
     key k = make_key(raw, settings_, warn);

@@ -2,11 +2,13 @@
 // as the keys arrive); interleaved tracks, and JSON documents the streaming
 // reader declines, are read whole.
 #include <fmt/format.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <atomic>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <new>
 #include <ostream>
@@ -31,6 +33,7 @@ struct document_facts {
         key first, last;
         bool translation = false;
         std::optional<euler_seq> euler;
+        double key_fps = 24;
         std::size_t keys = 0;
     };
     std::vector<track_facts> tracks;
@@ -38,12 +41,15 @@ struct document_facts {
     bool all_frames = true;  // every key has a frame
     bool any_time = false;   // some key has a time
     bool frames = false;     // some key has both: keyrot's own frames
+    bool any_frame = false;  // some key has a frame
 
-    void add(const std::string& track, const std::optional<euler_seq>& euler, key k) {
+    void add(const std::string& track, const std::optional<euler_seq>& euler, double key_fps, key k) {
         all_frames = all_frames && k.frame.has_value();
         any_time = any_time || k.has_time;
         frames = frames || (k.frame && k.has_time);
-        if (tracks.empty() || tracks.back().name != track) tracks.push_back({track, k, k, false, euler, 0});
+        if (tracks.empty() || tracks.back().name != track)
+            tracks.push_back({track, k, k, false, euler, key_fps, 0});
+        any_frame = any_frame || k.frame.has_value();
         ++tracks.back().keys;
         tracks.back().translation = tracks.back().translation || k.translation.has_value();
         tracks.back().last = std::move(k);
@@ -65,12 +71,20 @@ struct document_facts {
             info.all_frames = all_frames;
             info.any_time = any_time;
             info.rows_name = frames ? "frames" : "keys";
+            if (any_frame) info.fps = tracks.front().key_fps;
         }
         return info;
     }
 
-    /// resample: the frame grid of every track is within bounds.
+    /// resample: the frame grid of every track is within bounds. convert:
+    /// frame numbers at one rate, the one the output states.
     void check(const options& o, const std::string& source) const {
+        if (o.cmd == command::convert && any_frame)
+            for (const auto& t : tracks)
+                if (t.key_fps != tracks.front().key_fps)
+                    throw input_error(source, fmt::format("tracks '{}' and '{}' count frames at {} and {} fps: expected "
+                                                          "one rate in a file that convert writes (resample writes times)",
+                                                          tracks.front().name, t.name, tracks.front().key_fps, t.key_fps));
         if (o.cmd != command::resample) return;
         for (const auto& t : tracks) {
             check_method(o.how, t.euler);
@@ -83,7 +97,7 @@ document_facts facts_of(const input& doc) {
     document_facts d;
     d.named = doc.named;
     for (const track& t : doc.tracks)
-        for (const key& k : t.keys) d.add(t.name, t.euler, k);
+        for (const key& k : t.keys) d.add(t.name, t.euler, t.key_fps, k);
     return d;
 }
 
@@ -107,7 +121,7 @@ document_facts scan(const options& o, const input_source& src, format f, warning
             interleaved = true;
             return d;
         }
-        d.add(name, reader->settings().euler, std::move(k));
+        d.add(name, reader->settings().euler, reader->settings().key_fps, std::move(k));
     }
     if (d.tracks.empty()) throw input_error(where(src.source(), reader->start()), "no keys: expected at least one key");
     d.named = reader->named();
@@ -166,7 +180,7 @@ std::optional<document_facts> stream_rows(const options& o, const input_source& 
         }
         if (resampler) resampler->add(k);
         else row(key_row(k));
-        seen.add(name, settings.euler, std::move(k));
+        seen.add(name, settings.euler, settings.key_fps, std::move(k));
     }
     if (resampler) resampler->finish();
     seen.named = reader->named();
@@ -208,7 +222,7 @@ bool transform_in_one_pass(const options& o, const input_source& src, format in_
             std::string name;
             raw_key raw;
             if (!reader->next(name, raw)) return false;
-            guess.add(name, reader->settings().euler, make_key(raw, reader->settings(), warn));
+            guess.add(name, reader->settings().euler, reader->settings().key_fps, make_key(raw, reader->settings(), warn));
             guess.named = reader->named();
         }
         const write_options wopts = output_settings(o, guess.tracks.front().euler);
@@ -221,6 +235,7 @@ bool transform_in_one_pass(const options& o, const input_source& src, format in_
             rows.finish();
         }
         if (!seen || seen->table(o) != guess.table(o)) return false;
+        seen->check(o, src.source());
         for (const auto& t : seen->tracks)
             if (t.translation != t.first.translation.has_value()) return false;
         writer->finish();
@@ -264,6 +279,48 @@ void transform(const options& o, const input_source& src, format in_fmt, format 
     sink.finish();
 }
 
+/// Where --output-dir puts the output of input `name`: its file name, with
+/// the output format's extension.
+std::filesystem::path in_output_dir(const std::string& dir, const std::string& name, format out) {
+    std::filesystem::path file = std::filesystem::path(name).filename();
+    file.replace_extension(to_string(out));
+    return std::filesystem::path(dir) / file;
+}
+
+/// Before anything is written: no two inputs are written to one name, and
+/// no output replaces an input. An input's output format is known from the
+/// flags or its extension; where it is not (it would be sniffed), inputs
+/// whose names differ only in extension are taken to collide.
+void check_output_names(const options& o, const std::vector<std::string>& inputs) {
+    const auto file_id = [](const std::string& path) -> std::optional<std::pair<dev_t, ino_t>> {
+        struct stat st {};
+        if (::stat(path.c_str(), &st) != 0) return std::nullopt;
+        return std::pair(st.st_dev, st.st_ino);
+    };
+    std::map<std::pair<dev_t, ino_t>, std::string> input_files;
+    for (const std::string& name : inputs)
+        if (const auto id = name == "-" ? std::nullopt : file_id(name)) input_files.emplace(*id, name);
+    // By the output's name without its extension: the inputs, with their output's extension ("*": not known).
+    std::map<std::string, std::vector<std::pair<std::string, std::string>>> by_stem;
+    for (const std::string& name : inputs) {
+        const std::optional<format> out = o.to ? o.to : o.from ? o.from : format_of_path(name);
+        const std::filesystem::path target = in_output_dir(*o.output_dir, name, out.value_or(format::csv));
+        const std::string extension = out ? std::string(to_string(*out)) : "*";
+        auto& same_stem = by_stem[std::filesystem::path(target).replace_extension().string()];
+        for (const auto& [other, other_extension] : same_stem)
+            if (other_extension == extension || extension == "*" || other_extension == "*")
+                throw usage_error(fmt::format("--output-dir {}: '{}' and '{}' would both be written to '{}': expected "
+                                              "inputs with distinct names",
+                                              *o.output_dir, other, name,
+                                              std::filesystem::path(target).replace_extension(extension).string()));
+        same_stem.emplace_back(name, extension);
+        const auto id = out ? file_id(target.string()) : std::nullopt;
+        if (const auto input = id ? input_files.find(*id) : input_files.end(); input != input_files.end())
+            throw usage_error(fmt::format("--output-dir {}: the output of '{}' would replace the input '{}'",
+                                          *o.output_dir, name, input->second));
+    }
+}
+
 /// resample or convert one input; errors and warnings to `err`. Returns the status.
 int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err) {
     try {
@@ -273,9 +330,7 @@ int transform_one(const options& o, const std::string& name, std::istream& in, s
         std::optional<std::string> target;
         format out_fmt = o.to.value_or(in_fmt);
         if (o.output_dir) {
-            std::filesystem::path file = std::filesystem::path(name).filename();
-            file.replace_extension(to_string(out_fmt));
-            target = (std::filesystem::path(*o.output_dir) / file).string();
+            target = in_output_dir(*o.output_dir, name, out_fmt).string();
         } else if (o.output && *o.output != "-") {
             target = *o.output;
             if (!o.to) out_fmt = format_of_path(*target).value_or(in_fmt);
@@ -349,6 +404,7 @@ int run_transform(const options& o, std::istream& in, std::ostream& out, std::os
     if (inputs.size() > 1 && !o.output_dir) throw usage_error("several input files need --output-dir DIR");
     if (o.output_dir && o.output) throw usage_error("-o and --output-dir: expected one of them");
     if (o.output_dir) {
+        check_output_names(o, inputs);
         std::error_code ec;
         std::filesystem::create_directories(*o.output_dir, ec);
         if (ec) throw error(fmt::format("cannot create directory '{}': {}", *o.output_dir, ec.message()));

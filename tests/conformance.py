@@ -305,8 +305,19 @@ def read_output(text, fmt, rep, seq, degrees, order):
             assert list(m[3]) == [0, 0, 0, 1]
             return m[:3, :3], list(m[:3, 3])
         return m, None
+    def check_settings(h):
+        # What the output states about itself (SPEC: it reads back with no flags).
+        assert h["rep"] == rep, "stated rep %r, written %r" % (h["rep"], rep)
+        assert h["angles"] == ("degrees" if degrees else "radians"), "stated angles %r" % h["angles"]
+        if rep == "euler":
+            assert h["euler"] == seq, "stated Euler sequence %r, written %r" % (h["euler"], seq)
+        if rep == "quat":
+            assert h["quat_order"] == order, "stated quat_order %r, written %r" % (h["quat_order"], order)
     result = {}
     if fmt == "csv":
+        first, _, text = text.partition("\n")
+        assert first.startswith("# keyrot {"), "no settings line: %r" % first[:80]
+        check_settings(json.loads(first[len("# keyrot "):]))
         rows = list(csv.DictReader(io.StringIO(text)))
         for r in rows:
             def get(name, r=r):
@@ -330,10 +341,13 @@ def read_output(text, fmt, rep, seq, degrees, order):
         return result
     objs = []
     if fmt == "ndjson":
-        for line in text.splitlines():
+        lines = text.splitlines()
+        check_settings(json.loads(lines[0]))
+        for line in lines[1:]:
             objs.append((json.loads(line).get("track", ""), json.loads(line)))
     else:
         doc = json.loads(text)
+        check_settings(doc)
         if "tracks" in doc:
             for name, tr in doc["tracks"].items():
                 objs += [(name, o) for o in tr.get("frames", tr.get("keys"))]

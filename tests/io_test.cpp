@@ -313,7 +313,7 @@ TEST_CASE("JSON errors name the key path and what was expected") {
     CHECK(error_of(R"({"keys": [{"time": 0, "frame": 0, "quat": [1,0,0,0]}]})", format::json) ==
           "in: keys[0]: a key has both 'time' and 'frame': expected exactly one");
     CHECK(error_of(R"({"keys": [{"quat": [1,0,0,0]}]})", format::json) == "in: keys[0]: expected a 'time' or a 'frame'");
-    CHECK(error_of("{\"keys\": [\n{\"time\": 0,", format::json).find("in:2: invalid JSON") == 0);
+    CHECK(error_of("{\"keys\": [\n{\"time\": 0,", format::json).find("in:2:12: invalid JSON") == 0);
     CHECK(error_of(std::string(100, '[') + std::string(100, ']'), format::json).find("nested deeper") != std::string::npos);
     CHECK(error_of(R"({"keys": [{"time": 0, "matrix": [[1,0,0],[0,1,0]]}]})", format::json).find("expected 3 or 4 rows") !=
           std::string::npos);
@@ -354,7 +354,7 @@ TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
     CHECK(doc.tracks.size() == 2);
     CHECK(doc.tracks[1].keys[0].at.line == 3);
     CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1}\n", format::ndjson).find("in:2: no rotation") == 0);
-    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{oops\n", format::ndjson).find("in:2: invalid JSON") == 0);
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{oops\n", format::ndjson).find("in:2:2: invalid JSON") == 0);
     CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n\n{\"time\": 1, \"quat\": [1,0,0,\"0\"]}\n", format::ndjson) ==
           "in:3: 'quat[3]': expected a number, got string \"0\"");
     CHECK(error_of("{\"track\": \"a\", \"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1, \"quat\": [1,0,0,0]}\n",
@@ -782,7 +782,9 @@ TEST_CASE("writers: CSV, JSON and NDJSON tables") {
     write_options w;
     w.representation = rep::quat;
     w.precision = 4;
+    // --precision rounds the values, not the times
     CHECK(write(format::csv, info, w, rows) ==
+          "# keyrot {\"fps\": 24, \"method\": \"slerp\", \"rep\": \"quat\", \"angles\": \"degrees\", \"quat_order\": \"wxyz\"}\n"
           "frame,time,qw,qx,qy,qz,tx,ty,tz\n0,0,1,0,0,0,1,2,3\n12,0.5,0.7071,0,0,0.7071,0,0,-1\n");
     CHECK(write(format::json, info, w, rows) ==
           "{\"fps\": 24, \"method\": \"slerp\", \"rep\": \"quat\", \"angles\": \"degrees\", \"quat_order\": \"wxyz\", "
@@ -792,6 +794,7 @@ TEST_CASE("writers: CSV, JSON and NDJSON tables") {
     info.named = true;
     w.representation = rep::axis_angle;
     CHECK(write(format::ndjson, info, w, rows, "hip") ==
+          "{\"fps\": 24, \"method\": \"slerp\", \"rep\": \"axis-angle\", \"angles\": \"degrees\"}\n"
           "{\"track\": \"hip\", \"frame\": 0, \"time\": 0, \"axis\": [1, 0, 0], \"angle\": 0, \"translation\": [1, 2, 3]}\n"
           "{\"track\": \"hip\", \"frame\": 12, \"time\": 0.5, \"axis\": [0, 0, 1], \"angle\": 90, \"translation\": [0, 0, -1]}\n");
     CHECK(write(format::csv, info, w, rows, "a,b").find("\"a,b\",0,0,1,0,0,0,1,2,3\n") != std::string::npos);

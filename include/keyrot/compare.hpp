@@ -28,10 +28,13 @@ struct comparison {
     std::vector<row_difference> rows;  ///< EXPECTED's order, then ACTUAL's unmatched rows
     std::size_t failed = 0;
     std::optional<std::size_t> worst;  ///< index of the largest angle among matched rows
+    std::vector<std::string> missing_tracks;  ///< EXPECTED's tracks that ACTUAL has not (their rows are missing)
+    std::vector<std::string> extra_tracks;    ///< ACTUAL's tracks that EXPECTED has not
 };
 
-/// Rows are matched by track name and frame when both keys have a frame,
-/// else by track and time (|dt| <= tol::match_time).
+/// Rows are matched by track name and frame when both keys have a frame and
+/// both tracks count frames at the same rate (key_fps), else by track and
+/// time (|dt| <= tol::match_time).
 comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual,
                           const tolerances& tol);
 

@@ -22,6 +22,10 @@ struct track_info {
     std::vector<std::size_t> flipped;        ///< keys negated by --path shortest
     std::vector<std::size_t> renormalised;   ///< keys whose norm was off by > tol::unit_norm
     std::vector<std::size_t> near_gimbal;    ///< Euler keys within near_gimbal_deg of gimbal lock
+    /// Some key was given with a sign (not a matrix, whose quaternion's
+    /// sign is keyrot's choice): only then do `flipped` and
+    /// `direct_long_way` say something about the input.
+    bool signed_keys = false;
 };
 
 /// Euler keys whose middle angle is this close to its singular value are reported.

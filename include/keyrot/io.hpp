@@ -28,8 +28,13 @@ format sniff_format(std::string_view start);
 /// Everything a reader needs besides the text.
 struct read_options {
     std::string source;      ///< file name for messages, "<stdin>" for stdin
-    key_settings settings;   ///< from the flags; a JSON document may override
+    key_settings settings;   ///< from the flags; a document's own settings override them
     quat_order order = quat_order::wxyz;
+    /// Which settings the user gave as flags (not defaults): a document
+    /// that states otherwise wins, with a warning.
+    struct {
+        bool angles = false, key_fps = false;
+    } given;
 };
 
 struct raw_document {
@@ -131,7 +136,7 @@ struct table_info {
     bool any_time = true;     ///< as_given: some row has a time
     std::string_view time_name = "time";
     std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
-    std::optional<double> fps;              ///< JSON header fields, when known
+    std::optional<double> fps;              ///< the rate `frame` counts at, when rows have frames
     std::optional<method> how;
     bool operator==(const table_info&) const = default;
 };
@@ -155,6 +160,13 @@ rotation_values row_values(const sample& s, const write_options& opts, warnings&
 
 /// `text` as a JSON string literal, quotes included. Throws input_error for invalid UTF-8.
 std::string json_quote(std::string_view text);
+
+/// What an output states about itself, so that it reads back with the
+/// same meaning and no flags, as the members of a JSON object:
+/// `"fps": 24, "method": "slerp", "rep": "quat", "angles": "degrees", "quat_order": "wxyz"`
+/// (fps and method when known, euler and quat_order where the rep has them).
+/// A JSON document's first fields, an NDJSON header line, a CSV "# keyrot" line.
+std::string settings_members(const table_info& info, const write_options& opts);
 
 /// Euler output warns once about gimbal lock through `warn`.
 std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,

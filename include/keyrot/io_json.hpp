@@ -15,7 +15,7 @@ namespace keyrot {
 raw_document read_json(std::istream& in, const read_options& opts, warnings& warn);
 /// The same document's tracks and keys handed to `sink` in its order; returns
 /// whether it names its tracks.
-bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink);
+bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, warnings& warn);
 /// Thrown by make_json_reader's reader for a document it does not read as
 /// read_json would: the caller then reads it whole.
 struct json_not_streamed : error {
@@ -26,7 +26,7 @@ struct json_not_streamed : error {
 /// fields come before their keys and whose text flat_json takes; for any
 /// other, and for any error, it throws (json_not_streamed, input_error), and
 /// read_json then says what is wrong.
-std::unique_ptr<key_reader> make_json_reader(std::istream& in, const read_options& opts);
+std::unique_ptr<key_reader> make_json_reader(std::istream& in, const read_options& opts, warnings& warn);
 /// One line at a time. Throws input_error "<source>:<line>: ...".
 std::unique_ptr<key_reader> make_ndjson_reader(std::istream& in, const read_options& opts, warnings& warn);
 

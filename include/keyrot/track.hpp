@@ -32,6 +32,7 @@ struct raw_key {
     rep kind = rep::quat;
     std::array<double, 16> values{};  ///< as many as `kind` needs
     std::optional<vec3> translation;
+    std::string unknown;  ///< a JSON key's first field that keyrot does not read, if any
 };
 
 /// Settings that describe a document (flags, overridden by its own fields).
@@ -66,12 +67,17 @@ struct track {
     std::string name;
     std::optional<euler_seq> euler;  ///< the sequence in force for this track
     std::vector<key> keys;
+    double key_fps = 24;  ///< the rate its keys' frame numbers count at
 };
 
 /// One key converted and validated on its own: rotation to a unit
 /// quaternion, frame to time. Throws input_error naming the key; warns once
 /// per source about renormalised quaternions.
 key make_key(const raw_key& raw, const key_settings& settings, warnings& warn);
+
+/// A field of the input that keyrot does not read (a misspelt "translaton"):
+/// one warning per source, or with strict settings an input_error at `where`.
+void unknown_field(std::string_view name, const std::string& where, const key_settings& settings, warnings& warn);
 
 /// Throws input_error unless `next` comes strictly after `previous`.
 void check_order(const key& previous, const key& next, const std::string& source);
