@@ -1,0 +1,158 @@
+#!/usr/bin/env bash
+# Pipelines: keyrot's outputs read back into keyrot with the same meaning
+# and no flags, through real pipes, FIFOs, process substitution and batches.
+# Usage: pipelines_test.sh KEYROT DATA_DIR
+set -u
+keyrot=$1
+data=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+# shellcheck source=tests/expect.sh
+source "$(dirname "$0")/expect.sh"
+cd "$work" || exit 1
+
+# expect_pass NAME ROWS -- COMMAND...: a compare that matched ROWS rows, all within tolerance
+expect_pass() {
+    local name=$1 rows=$2
+    shift 3
+    local got rc
+    got=$("$@" 2>"$work/stderr")
+    rc=$?
+    if [[ $rc == 0 && $got == "$rows rows compared, 0 failed;"* ]]; then
+        passed=$((passed + 1))
+    else
+        fail "$name: status $rc, [$got], stderr [$(cat "$work/stderr")]"
+    fi
+}
+
+# ---- every output, read back with no flags: each format, representation and unit
+printf 'track,time,qw,qx,qy,qz,tx,ty,tz\nhip,0,1,0,0,0,0,1,0\nhip,0.5,0.5,0.5,0.5,0.5,1,1,0\nhip,1,0,0.6,0,0.8,2,1,0
+knee,0,0.9,0.1,0.3,0.3,,,\nknee,1,0.5,-0.5,0.5,0.5,,,\n' > walk.csv
+"$keyrot" resample walk.csv --fps 10 --rep quat > direct.csv
+for to in csv json ndjson; do
+    for rep in quat axis-angle rotvec euler matrix matrix4; do
+        for unit in "" --radians; do
+            # shellcheck disable=SC2086
+            expect_pass "read back: $to $rep $unit" 22 -- bash -c \
+                "'$keyrot' resample walk.csv --fps 10 --to $to --rep $rep --out-euler xyz --quat-order xyzw $unit |
+                 '$keyrot' compare direct.csv - --tol 1e-9"
+        done
+    done
+done
+# and through convert, with no flags on the second command
+for to in csv json ndjson; do
+    expect_pass "convert chain: $to euler xyz radians" 22 -- bash -c \
+        "'$keyrot' resample walk.csv --fps 10 --rep euler --out-euler xyz --radians --to $to | '$keyrot' convert |
+         '$keyrot' compare direct.csv - --tol 1e-9"
+done
+
+# ---- the key rate travels with frame-numbered keys
+printf 'frame,qw,qx,qy,qz\n0,1,0,0,0\n15,0.9238795325112867,0,0,0.3826834323650898\n30,0.7071067811865476,0,0,0.7071067811865476\n' > anim.csv
+"$keyrot" resample anim.csv --key-fps 30 > anim_direct.csv
+for to in csv json ndjson; do
+    # A 1 s clip stays 1 s: 25 frames at 24 fps, the last at 1 s and 90 degrees.
+    expect "key rate through convert --to $to" 0 "24,1,0,0,1,90" -- bash -c \
+        "'$keyrot' convert anim.csv --key-fps 30 --to $to | '$keyrot' resample - --to csv | tail -n 1"
+    expect_pass "key rate chain --to $to" 25 -- bash -c \
+        "'$keyrot' convert anim.csv --key-fps 30 --to $to | '$keyrot' resample - | '$keyrot' compare anim_direct.csv -"
+done
+expect "a conflicting flag is named" 0 "keyrot: warning: <stdin>: the file's 'fps' is used, not --key-fps 24" -- bash -c \
+    "'$keyrot' convert anim.csv --key-fps 30 | '$keyrot' resample - --key-fps 24 2>&1 >/dev/null"
+expect "convert of frames at two rates" 2 "" -- bash -c \
+    "printf '%s' '{\"tracks\": {\"a\": {\"fps\": 30, \"keys\": [{\"frame\": 0, \"quat\": [1,0,0,0]}]}, \"b\": {\"fps\": 24, \"keys\": [{\"frame\": 0, \"quat\": [1,0,0,0]}]}}}' |
+     '$keyrot' convert --from json"
+
+# ---- slerp's table reads back
+expect_pass "slerp into compare" 5 -- bash -c \
+    "'$keyrot' slerp 1,0,0,0 0.7071067811865476,0,0,0.7071067811865476 --steps 4 > key.csv &&
+     '$keyrot' compare key.csv <('$keyrot' slerp 0,0,0,1 0,0,0.7071067811865476,0.7071067811865476 --quat-order xyzw --steps 4 --to json)"
+expect "slerp into convert" 0 "0.5,0,0,1,45" -- bash -c \
+    "'$keyrot' slerp 1,0,0,0 0.7071067811865476,0,0,0.7071067811865476 --steps 2 | '$keyrot' convert --precision 9 | sed -n 4p"
+
+# ---- compare at two frame rates: by time
+printf '{"keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "axis": [0, 0, 1], "angle": 90}]}' > homework.json
+"$keyrot" resample homework.json --fps 4 --to csv > key4.csv
+"$keyrot" resample homework.json --fps 8 --to csv > answer8.csv
+expect "4 fps key, 8 fps answer: only the extra rows fail" 1 "9 rows compared, 4 failed; largest difference 0 deg at frame 0 (0 s)" -- \
+    "$keyrot" compare key4.csv answer8.csv
+expect "4 fps key, 8 fps answer: rates named, no difference claimed" 0 "keyrot: key4.csv counts frames at 4 fps, answer8.csv at 8 fps: rows are matched by time
+keyrot: answer8.csv: frame 1 (0.125 s): only in ACTUAL" -- bash -c \
+    "'$keyrot' compare key4.csv answer8.csv 2>&1 >/dev/null | head -n 2"
+expect "a misnamed track, said once" 0 "keyrot: b.json: track 'Hip' missing from ACTUAL
+keyrot: b.json: track 'Hips' only in ACTUAL" -- bash -c \
+    "printf '{\"tracks\": {\"Hip\": [{\"time\": 0, \"quat\": [1,0,0,0]}, {\"time\": 1, \"quat\": [1,0,0,0]}]}}' > a.json &&
+     printf '{\"tracks\": {\"Hips\": [{\"time\": 0, \"quat\": [1,0,0,0]}, {\"time\": 1, \"quat\": [1,0,0,0]}]}}' > b.json &&
+     '$keyrot' compare a.json b.json 2>&1 >/dev/null; true"
+
+# ---- --precision rounds values, not times; at a key's time, the key
+expect "precision keeps times" 0 "3,0.375,0.9569,0,0,0.2903" -- bash -c \
+    "'$keyrot' resample homework.json --fps 8 --to csv --rep quat --precision 4 | sed -n 6p"
+printf 'time,ax,ay,az,angle\n0,0,0,1,0\n1,0,0,1,0\n1.000000000001,0,0,1,90\n2,0,0,1,90\n' > close.csv
+expect "keys 1e-12 s apart: frame 1 is the key at 1 s" 0 "1,1,1,0,0,0" -- bash -c \
+    "'$keyrot' resample close.csv --fps 1 | sed -n 4p"
+printf 'time,ax,ay,az,angle\n0,0,0,1,0\n1e-12,0,0,1,90\n' > close_start.csv
+expect "keys at 0 and 1e-12 s: frame 0 is the key at 0" 0 "0,0,1,0,0,0" -- bash -c \
+    "'$keyrot' resample close_start.csv --fps 1 | sed -n 3p"
+printf 'time,qw,qx,qy,qz,tx,ty,tz\n0,1,0,0,0,0,0,0\n0.999999999999,1,0,0,0,5,5,5\n1,1,0,0,0,1,1,1\n' > close_translation.csv
+expect "translation at a key's exact time" 0 "1,1,1,0,0,0,1,1,1" -- bash -c \
+    "'$keyrot' resample close_translation.csv --fps 1 | sed -n 4p"
+
+# ---- inputs that cannot be read twice are read as standard input is
+"$keyrot" resample walk.csv --fps 10 > walk10.csv
+expect_pass "process substitution" 22 -- bash -c "'$keyrot' compare walk10.csv <('$keyrot' resample walk.csv --fps 10 --to ndjson)"
+expect_pass "/dev/stdin" 22 -- bash -c "'$keyrot' resample walk.csv --fps 10 | '$keyrot' compare walk10.csv /dev/stdin"
+mkfifo fifo.csv
+expect_pass "a named pipe" 22 -- timeout 60 bash -c "('$keyrot' resample walk.csv --fps 10 > fifo.csv &) ; '$keyrot' compare walk10.csv fifo.csv"
+
+# ---- batches never lose a file or replace an input
+mkdir -p a b out
+cp walk.csv a/track.csv
+"$keyrot" convert walk.csv --to json > b/track.json
+expect_error "two inputs, one output name" "keyrot: --output-dir out: 'a/track.csv' and 'b/track.json' would both be written to 'out/track.csv': expected inputs with distinct names" -- \
+    "$keyrot" convert a/track.csv b/track.json --output-dir out --to csv
+expect "nothing written before the error" 0 "" -- ls out
+expect_error "an output would replace its input" "keyrot: --output-dir .: the output of 'self.csv' would replace the input 'self.csv'" -- \
+    bash -c "cp walk.csv self.csv && '$keyrot' convert self.csv --output-dir ."
+expect "the input kept" 0 "" -- cmp self.csv walk.csv
+expect "distinct formats, distinct names" 0 "track.csv
+track.json" -- bash -c "'$keyrot' convert a/track.csv b/track.json --output-dir out && ls out"
+
+# ---- JSON: duplicate names are errors, unknown fields are named
+expect_error "duplicate track" "keyrot: <stdin>: tracks: 'a' appears twice: expected each name once in an object" -- bash -c \
+    "printf '{\"tracks\": {\"a\": [{\"time\": 0, \"quat\": [1,0,0,0]}], \"a\": [{\"time\": 1, \"quat\": [1,0,0,0]}]}}' | '$keyrot' convert"
+printf '{"keys": [{"time": 0, "quat": [1,0,0,0], "translaton": [1,2,3]}]}' > typo.json
+expect "a misspelt field warns" 0 "keyrot: warning: typo.json: ignoring unknown field 'translaton' (typo.json: keys[0])" -- bash -c \
+    "'$keyrot' convert typo.json 2>&1 >/dev/null"
+expect_error "a misspelt field, --strict" "keyrot: typo.json: keys[0]: unknown field 'translaton': expected only fields keyrot reads (--strict)" -- \
+    "$keyrot" convert typo.json --strict
+expect "a misspelt document field warns" 0 "keyrot: warning: <stdin>: ignoring unknown field 'quatorder' (<stdin>: document)" -- bash -c \
+    "printf '{\"quatorder\": \"xyzw\", \"keys\": [{\"time\": 0, \"quat\": [0,0,0,1]}]}' | '$keyrot' convert 2>&1 >/dev/null"
+expect "a misspelt NDJSON field warns" 0 "keyrot: warning: <stdin>: ignoring unknown field 'angle_unit' (<stdin>:1)" -- bash -c \
+    "printf '{\"time\": 0, \"rotvec\": [0,0,1], \"angle_unit\": \"radians\"}\n' | '$keyrot' convert 2>&1 >/dev/null"
+
+# ---- every flag a command lists does what it says
+expect "info -o info.json writes JSON" 0 "walk.csv 2" -- bash -c \
+    "'$keyrot' info walk.csv -o info.json && /usr/bin/env python3 -c 'import json; d = json.load(open(\"info.json\")); print(d[\"source\"], len(d[\"tracks\"]))'"
+expect_error "info --to csv" "keyrot: info: --to: csv not in {json} (see keyrot info --help)" -- "$keyrot" info walk.csv --to csv
+expect_error "compare --rep" "keyrot: compare: The following arguments were not expected: quat --rep (see keyrot compare --help)" -- \
+    "$keyrot" compare walk.csv walk.csv --rep quat
+expect "compare -o" 0 "22 rows compared, 0 failed" -- bash -c "'$keyrot' compare walk10.csv walk10.csv -o summary.txt && cut -d';' -f1 summary.txt"
+
+# ---- messages in the user's words
+expect_error "ACTUAL missing" "keyrot: compare: ACTUAL is missing: expected two files, EXPECTED ACTUAL (see keyrot compare --help)" -- \
+    "$keyrot" compare key.csv
+expect_error "unknown command" "keyrot: unknown command 'interp': expected resample, convert, slerp, compare or info (did you mean 'slerp'?)" -- \
+    "$keyrot" interp x
+expect_error "slerp -t nan" "keyrot: -t: expected a finite number, got nan" -- "$keyrot" slerp 1,0,0,0 0,0,0,1 -t nan
+expect_error "JSON named .csv" "keyrot: out.csv:1: expected a CSV header, got what looks like JSON ('{'): --from json or --from ndjson reads it as such" -- \
+    bash -c "'$keyrot' resample homework.json --to json > out.csv && '$keyrot' info out.csv"
+# a stray comma at byte 50,002 of one long line
+/usr/bin/env python3 -c '
+import json
+d = json.dumps({"keys": [{"time": i, "quat": [1, 0, 0, 0]} for i in range(3000)]})
+open("long.json", "w").write(d[:50001] + "," + d[50001:])'
+expect "a long JSON line: the column" 0 "keyrot: long.json:1:50002: invalid JSON" -- bash -c "'$keyrot' info long.json 2>&1 | cut -d: -f1-5"
+expect "info on matrices: no sign lines" 0 "0" -- bash -c \
+    "'$keyrot' convert walk.csv --rep matrix | '$keyrot' info | grep -c -e flipped -e 'long way' || true"
+
+summary
