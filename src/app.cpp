@@ -137,7 +137,7 @@ input load(const options& o, const input_source& src, warnings& warn, json_readi
 /// Writes `text` to -o FILE (atomically) or to `out`.
 void emit(const options& o, const std::string& text, std::ostream& out) {
     if (o.output && *o.output != "-") write_file_atomically(*o.output, text);
-    else out << text << std::flush;
+    else write_to_stream(out, text);
 }
 
 }  // namespace detail

@@ -68,11 +68,12 @@ euler_seq euler_flag(const std::string& flag, const std::string& value) {
     if (auto seq = parse_euler_seq(value)) return *seq;
     throw usage_error(fmt::format("{}: expected three axes like ZYX (intrinsic) or xyz (extrinsic), no two "
                                   "consecutive ones equal, got '{}'",
-                                  flag, value));
+                                  flag, excerpt(value)));
 }
 
 void check_rate(const char* flag, double v) {
-    if (!(std::isfinite(v) && v > 0)) throw usage_error(fmt::format("{}: expected a positive frame rate, got {}", flag, v));
+    // A subnormal rate has no finite frame period: 1e-320 fps is no rate.
+    if (!(std::isnormal(v) && v > 0)) throw usage_error(fmt::format("{}: expected a positive frame rate, got {}", flag, v));
 }
 
 /// Turns the raw flag values into typed options, checking what CLI11 cannot.
@@ -226,7 +227,7 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
     if (!known && !first.empty() && first.front() != '-')
         throw usage_error(fmt::format("unknown command '{}': expected resample, convert, slerp, compare or info "
                                       "(did you mean '{}'?)",
-                                      first.substr(0, 40), nearest_command(first)));
+                                      excerpt(first), nearest_command(first)));
     std::array<CLI::App*, commands.size()> subs{};
     for (std::size_t i = 0; i < commands.size(); ++i) {
         subs[i] = app.add_subcommand(commands[i].name, commands[i].description);

@@ -25,6 +25,13 @@ std::string printable(std::string_view text) {
     return out;
 }
 
+std::string excerpt(std::string_view text, std::size_t max) {
+    if (text.size() <= max) return std::string(text);
+    std::size_t cut = max;
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;  // not inside a character
+    return std::string(text.substr(0, cut)) + "...";
+}
+
 void print_error(std::ostream& err, std::string_view message) { err << "keyrot: " << printable(message) << '\n'; }
 
 void warnings::once(const std::string& kind, const std::string& message) {

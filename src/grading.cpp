@@ -8,6 +8,7 @@
 #include "keyrot/compare.hpp"
 #include "keyrot/describe.hpp"
 #include "keyrot/layout.hpp"
+#include "row_pipeline.hpp"
 
 namespace keyrot::detail {
 
@@ -39,7 +40,7 @@ raw_key operand(const char* name, const std::string& text, const options& o, dou
                            : o.from_rep == rep::rotvec     ? "rx,ry,rz"
                                                            : "e1,e2,e3";
         throw usage_error(fmt::format("{}: expected {} comma-separated numbers ({}, --from-rep {}), got '{}'", name, want,
-                                      what, to_string(o.from_rep), text));
+                                      what, to_string(o.from_rep), excerpt(text)));
     }
     if (o.from_rep == rep::quat) {
         const auto wxyz = from_quat_order({values[0], values[1], values[2], values[3]}, o.order);
@@ -57,13 +58,12 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     std::vector<double> ts = o.ts;
     if (o.steps) {
         if (*o.steps < 1) throw usage_error(fmt::format("--steps: expected at least 1, got {}", *o.steps));
-        // Rows are made in memory: a mistyped count must not take it all.
+        // A mistyped count must not write for hours.
         if (*o.steps + 1.0 > o.max_frames)
             throw usage_error(fmt::format("--steps {} makes {} rows: expected at most {:g} (--max-frames N raises the limit)",
                                           *o.steps, *o.steps + 1.0, o.max_frames));
-        for (int i = 0; i <= *o.steps; ++i) ts.push_back(static_cast<double>(i) / *o.steps);
     }
-    if (ts.empty()) throw usage_error("slerp needs -t T or --steps N");
+    if (ts.empty() && !o.steps) throw usage_error("slerp needs -t T or --steps N");
     // Each operand is its own source for messages: "keyrot: Q1: quaternion is zero: ...".
     warnings warn0(err, "Q0"), warn1(err, "Q1");
     const track t{"", o.euler, {make_key(operand("Q0", o.q0, o, 0), settings_of(o), warn0),
@@ -73,15 +73,22 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     info.times = time_columns::time_only;
     info.time_name = "t";
     info.how = o.how;
-    std::string text;
-    const auto writer = make_writer(o.to.value_or(format::csv), text, info, output_settings(o, t.euler), warn0);
+    // Rows are written as they are made: --steps may ask for millions.
+    const std::optional<std::string> target = o.output && *o.output != "-" ? o.output : std::nullopt;
+    chunked_output sink(target, out);
+    const format to = o.to.value_or(target ? format_of_path(*target).value_or(format::csv) : format::csv);
+    const auto writer = make_writer(to, sink.text(), info, output_settings(o, t.euler), warn0);
     writer->begin_track("", false);
-    for (double h : ts) {
+    const auto row = [&](double h) {
         const quat q = h == 0 ? curve.at_key(0) : h == 1 ? curve.at_key(1) : curve.at(0, h);
         writer->row(sample{h, std::nullopt, q, std::nullopt});
-    }
+        sink.maybe_flush();
+    };
+    for (double h : ts) row(h);
+    if (o.steps)
+        for (int i = 0; i <= *o.steps; ++i) row(static_cast<double>(i) / *o.steps);
     writer->finish();
-    emit(o, text, out);
+    sink.finish();
     return 0;
 }
 
@@ -200,7 +207,8 @@ std::string info_text(const input& doc, const std::vector<track_info>& infos, st
         append_number(s, v, precision.value_or(6));
         return s;
     };
-    std::string out = fmt::format("{}: {} track{}, {}\n", doc.source, infos.size(), infos.size() == 1 ? "" : "s",
+    // (printable: a file name's control bytes must not reach a terminal raw)
+    std::string out = fmt::format("{}: {} track{}, {}\n", printable(doc.source), infos.size(), infos.size() == 1 ? "" : "s",
                                   to_string(doc.fmt));
     for (const track_info& t : infos) {
         out += fmt::format("{}: {} key{}, {} s to {} s, given as {}\n", t.name.empty() ? "track" : "track " + t.name,

@@ -53,7 +53,7 @@ format sniff_format(std::string_view text) {
 
 void check_track_name(const std::string& name, const std::string& where) {
     if (has_control_characters(name))
-        throw input_error(where, fmt::format("track name '{}' has control characters: expected printable text", name));
+        throw input_error(where, fmt::format("track name '{}' has control characters: expected printable text", excerpt(name)));
 }
 
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn) {

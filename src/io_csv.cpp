@@ -29,6 +29,7 @@ class cell_splitter {
 public:
     const std::vector<std::string_view>& split(std::string_view line, const std::string& source, std::size_t line_no) {
         cells_.clear();
+        has_quotes_.clear();
         if (line.find('"') == std::string_view::npos) {  // the common case: no copies
             std::size_t start = 0;
             for (std::size_t comma; (comma = line.find(',', start)) != std::string_view::npos; start = comma + 1)
@@ -38,6 +39,7 @@ public:
         }
         quoted_.clear();
         quoted_.emplace_back();
+        has_quotes_.assign(1, false);
         bool quoted = false;
         for (std::size_t i = 0; i < line.size(); ++i) {
             const char c = line[i];
@@ -47,9 +49,13 @@ public:
                 else quoted = false;
             } else if (c == ',') {
                 quoted_.emplace_back();
+                has_quotes_.push_back(false);
             } else if (c == '"') {
+                // Spaces before the quote are the cell's padding, not its text.
+                if (trim(quoted_.back()).empty()) quoted_.back().clear();
                 quoted = true;
-            } else {
+                has_quotes_.back() = true;
+            } else if (!(has_quotes_.back() && (c == ' ' || c == '\t'))) {  // (nor spaces after it)
                 quoted_.back() += c;
             }
         }
@@ -59,9 +65,16 @@ public:
         return cells_;
     }
 
+    /// Cell i of the last line split as it is meant: a quoted cell's text
+    /// exactly, any other trimmed.
+    std::string_view text(std::size_t i) const {
+        return i < has_quotes_.size() && has_quotes_[i] ? cells_[i] : trim(cells_[i]);
+    }
+
 private:
     std::vector<std::string_view> cells_;
     std::deque<std::string> quoted_;  // stable addresses for the views
+    std::vector<bool> has_quotes_;    // for a line with quotes: which cells had them
 };
 
 /// Rows of at most this many cells may be read by the fast path.
@@ -197,7 +210,7 @@ public:
         }
         track.clear();
         if (cols_.track) {
-            track = trim(cells[*cols_.track]);
+            track = splitter_.text(*cols_.track);
             if (track.empty()) throw input_error(where(), "column 'track': expected a track name, got an empty cell");
             check_track_name(track, where());
         }
@@ -365,7 +378,10 @@ std::unique_ptr<key_reader> make_csv_reader(std::istream& in, const read_options
 namespace {
 
 void append_cell_text(std::string& out, std::string_view text) {
-    if (text.find_first_of(",\"\r\n") == std::string_view::npos && trim(text) == text) {
+    // Quoted where it would otherwise read back as something else: a comma,
+    // a quote, a line break, spaces at either end (trimmed), a leading '#'
+    // (a comment line, in the first column).
+    if (text.find_first_of(",\"\r\n") == std::string_view::npos && trim(text) == text && !text.starts_with('#')) {
         out += text;
         return;
     }

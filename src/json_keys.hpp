@@ -193,21 +193,21 @@ void apply_fields(Value obj, key_settings& s, quat_order& order, const std::stri
     };
     if (auto a = text("angles")) {
         const auto u = parse_angle_unit(*a);
-        if (!u) throw input_error(where, fmt::format("'angles': expected \"degrees\" or \"radians\", got \"{}\"", *a));
+        if (!u) throw input_error(where, fmt::format("'angles': expected \"degrees\" or \"radians\", got \"{}\"", excerpt(*a)));
         if (*u != opts.settings.angles) conflict("angles", opts.given.angles, "--radians");
         s.angles = *u;
     }
     if (auto e = text("euler")) {
         const auto seq = parse_euler_seq(*e);
         if (!seq)
-            throw input_error(where, fmt::format("'euler': expected a sequence like \"ZYX\" or \"xyz\", got \"{}\"", *e));
+            throw input_error(where, fmt::format("'euler': expected a sequence like \"ZYX\" or \"xyz\", got \"{}\"", excerpt(*e)));
         if (opts.settings.euler && seq->name != opts.settings.euler->name)
             conflict("euler", true, "--euler " + opts.settings.euler->name);
         s.euler = seq;
     }
     if (auto o = text("quat_order")) {
         const auto q = parse_quat_order(*o);
-        if (!q) throw input_error(where, fmt::format("'quat_order': expected \"wxyz\" or \"xyzw\", got \"{}\"", *o));
+        if (!q) throw input_error(where, fmt::format("'quat_order': expected \"wxyz\" or \"xyzw\", got \"{}\"", excerpt(*o)));
         order = *q;
     }
     if (const auto f = obj.member("fps")) {

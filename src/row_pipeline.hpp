@@ -103,9 +103,7 @@ private:
         if (file_) {
             file_->write(text);
         } else {
-            out_.write(text.data(), static_cast<std::streamsize>(text.size()));
-            out_.flush();
-            if (!out_) throw error("cannot write to standard output");
+            write_to_stream(out_, text);
         }
     }
 

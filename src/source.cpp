@@ -5,7 +5,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
+#include <ctime>
+#include <utility>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -20,21 +23,35 @@ namespace {
 
 std::string errno_text() { return std::strerror(errno); }
 
+std::string changed(const std::string& source) {
+    return fmt::format("'{}' changed while keyrot was reading it: expected it to stay as it was until keyrot is done", source);
+}
+
+/// What tells a file's content changed: its size and modification time.
+std::pair<off_t, std::timespec> version_of(int fd) {
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) return {-1, {}};
+    return {st.st_size, st.st_mtim};
+}
+
 /// Reads an open file from the start with pread, so that every stream on
 /// the same descriptor has its own position. A read error throws
 /// keyrot::error naming `source`.
 class descriptor_buffer : public std::streambuf {
 public:
-    descriptor_buffer(int fd, off_t start, const std::string& source) : fd_(fd), source_(source), offset_(start) {}
+    /// Reads [start, end) of the file.
+    descriptor_buffer(int fd, off_t start, off_t end, const std::string& source)
+        : fd_(fd), source_(source), offset_(start), end_(end) {}
 
 protected:
     int_type underflow() override {
         if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
+        if (offset_ >= end_) return traits_type::eof();  // what grew since is not what was checked
         ssize_t got;
-        do got = ::pread(fd_, buffer_.data(), buffer_.size(), offset_);
+        do got = ::pread(fd_, buffer_.data(), std::min<std::size_t>(buffer_.size(), static_cast<std::size_t>(end_ - offset_)), offset_);
         while (got < 0 && errno == EINTR);
         if (got < 0) throw error(fmt::format("cannot read '{}': {}", source_, errno_text()));
-        if (got == 0) return traits_type::eof();
+        if (got == 0) throw error(changed(source_));
         offset_ += got;
         setg(buffer_.data(), buffer_.data(), buffer_.data() + got);
         return traits_type::to_int_type(*gptr());
@@ -42,22 +59,19 @@ protected:
 
     /// The bytes left in a regular file, so that a reader of the whole
     /// stream (JSON) can allocate once.
-    std::streamsize showmanyc() override {
-        struct stat st {};
-        return ::fstat(fd_, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > offset_ ? st.st_size - offset_ : 0;
-    }
+    std::streamsize showmanyc() override { return end_ - offset_; }
 
 private:
     int fd_;
     const std::string& source_;
-    off_t offset_;
+    off_t offset_, end_;
     std::array<char, std::size_t{1} << 16> buffer_;
 };
 
 class descriptor_stream : public std::istream {
 public:
-    descriptor_stream(int fd, off_t start, const std::string& source)
-        : std::istream(nullptr), buffer_(fd, start, source) {
+    descriptor_stream(int fd, off_t first, off_t past_end, const std::string& source)
+        : std::istream(nullptr), buffer_(fd, first, past_end, source) {
         rdbuf(&buffer_);
         exceptions(badbit);  // lets the buffer's error through istream's catch
     }
@@ -115,12 +129,13 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
         const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
         if (fd < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
         struct stat st {};
-        if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
+        if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
             fd_ = fd;
             return;
         }
-        // A pipe, a FIFO, process substitution, /dev/stdin, a device: read
-        // once, as standard input is, into a file that can be read twice.
+        // A pipe, a FIFO, process substitution, /dev/stdin, a device, or a
+        // file whose size says nothing (/proc's): read once, as standard
+        // input is, into a file that can be read twice.
         const bool directory = S_ISDIR(st.st_mode);
         try {
             if (directory) throw error(fmt::format("cannot read '{}': it is a directory", name));
@@ -138,13 +153,14 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
         ::close(fd);
         return;
     }
+    if (!stdin_stream) throw error("cannot read '<stdin>': it is closed");
     // A file on the process's standard input is read in place, from where
     // its offset stands (as cat would); anything else is spooled.
     if (&stdin_stream == &std::cin) {
         struct stat st {};
         if (::fstat(STDIN_FILENO, &st) != 0) throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
         if (S_ISDIR(st.st_mode)) throw error("cannot read '<stdin>': it is a directory");
-        if (S_ISREG(st.st_mode)) {
+        if (S_ISREG(st.st_mode) && st.st_size > 0) {
             start_ = ::lseek(STDIN_FILENO, 0, SEEK_CUR);
             if (start_ >= 0) fd_ = ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0);
             if (fd_ < 0) throw error(fmt::format("cannot read '<stdin>': {}", errno_text()));
@@ -160,7 +176,15 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
 input_source::~input_source() { ::close(fd_); }
 
 std::unique_ptr<std::istream> input_source::open() const {
-    return std::make_unique<descriptor_stream>(fd_, start_, source_);
+    // Each pass reads what the first one checked: a file that changed in
+    // between is an error before the pass that writes begins.
+    const auto [size, modified] = version_of(fd_);
+    if (!opened_) {
+        size_ = size, modified_ = modified, opened_ = true;
+    } else if (size != size_ || modified.tv_sec != modified_.tv_sec || modified.tv_nsec != modified_.tv_nsec) {
+        throw error(changed(source_));
+    }
+    return std::make_unique<descriptor_stream>(fd_, start_, std::max(start_, size_), source_);
 }
 
 format input_source::detect(std::optional<format> given) const {

@@ -110,7 +110,7 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
 }
 
 void unknown_field(std::string_view name, const std::string& where, const key_settings& settings, warnings& warn) {
-    const std::string what = fmt::format("unknown field '{}'", name.substr(0, 40));
+    const std::string what = fmt::format("unknown field '{}'", excerpt(name));
     if (settings.strict) throw input_error(where, what + ": expected only fields keyrot reads (--strict)");
     warn.once("field", fmt::format("ignoring {} ({})", what, where));
 }

@@ -15,10 +15,16 @@ namespace keyrot {
 /// \xNN, so that a message quoting bad input stays one readable line.
 std::string printable(std::string_view text);
 
+/// How a message quotes input: `text` whole up to `max` bytes, else its
+/// first `max` bytes (whole UTF-8 characters) and "...", so that a 50 MB
+/// bad value still gives a readable line.
+std::string excerpt(std::string_view text, std::size_t max = 40);
+
 struct error : std::runtime_error {
     /// The message made printable at once: what() is a C string, which a
-    /// NUL byte quoted from the input would cut short.
-    explicit error(const std::string& message) : std::runtime_error(printable(message)) {}
+    /// NUL byte quoted from the input would cut short. One line stays
+    /// readable whatever was quoted into it: at most 4096 bytes.
+    explicit error(const std::string& message) : std::runtime_error(printable(excerpt(message, 4096))) {}
 };
 
 /// A bad command line.

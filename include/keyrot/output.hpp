@@ -1,21 +1,34 @@
 #pragma once
 // Writing results so that a failure never leaves a partial file behind.
+#include <cstddef>
+#include <iosfwd>
+#include <optional>
 #include <string>
 #include <string_view>
 
 namespace keyrot {
 
 /// Whether output to `path` goes to a temporary file renamed into place (a
-/// regular file, or none yet) rather than straight into `path` (a device or
-/// a pipe: /dev/null, /dev/stdout, a FIFO), where it cannot be taken back.
+/// regular file, or none yet) rather than straight into `path` (a device, a
+/// pipe, or a descriptor: /dev/null, /dev/stdout, /dev/fd/3, a FIFO), where
+/// it cannot be taken back.
 bool replaced_on_commit(const std::string& path);
 
+/// Writes `text` to `out` (standard output) and flushes it. Throws
+/// keyrot::error with the reason ("cannot write to standard output: No
+/// space left on device") when it cannot.
+void write_to_stream(std::ostream& out, std::string_view text);
+
 /// A temporary file beside `path` (beside the file it links to, for a
-/// symbolic link), written in pieces and renamed into place by commit(), so
-/// `path` is either untouched or complete; the file keeps the mode of the
-/// one it replaces. Destroyed without commit(), it removes the temporary
-/// file. A device or a pipe is written straight into instead. Throws
-/// keyrot::error ("cannot write 'out.csv': Permission denied") on failure.
+/// symbolic link of the caller's or of the directory's owner), written in
+/// pieces and renamed into place by commit(), durably (fsync of the file,
+/// then of its directory), so `path` is either untouched or complete; the
+/// file keeps the permission bits of the one it replaces (not set-user-ID
+/// or set-group-ID), and a file the caller may not write is refused.
+/// Destroyed without commit(), or on SIGINT, SIGTERM or SIGHUP, it removes
+/// the temporary file. A device, a pipe or a descriptor (/dev/stdout) is
+/// written straight into instead. Throws keyrot::error ("cannot write
+/// 'out.csv': Permission denied") on failure.
 class output_file {
 public:
     explicit output_file(std::string path);
@@ -26,11 +39,14 @@ public:
     void commit();
 
 private:
-    [[noreturn]] void fail(int err);
+    [[noreturn]] void fail(int err) const;
+    /// The file `path` names through symbolic links (which may not exist yet).
+    std::string resolve(const std::string& path) const;
 
     std::string path_, target_, temp_;  // no temp_: straight into path_
     int fd_ = -1;
     long long written_ = 0;
+    std::optional<std::size_t> slot_;  // temp_'s, for the signal handler
 };
 
 /// output_file(path), write(data), commit().

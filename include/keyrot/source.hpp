@@ -4,6 +4,7 @@
 // input can be read twice (validated first, then streamed) in constant memory.
 #include <sys/types.h>
 
+#include <ctime>
 #include <istream>
 #include <memory>
 #include <optional>
@@ -37,6 +38,10 @@ private:
     std::string name_, source_;
     int fd_ = -1;
     off_t start_ = 0;  // where the input begins in fd_
+    // The file as the first open() found it (size, modification time).
+    mutable bool opened_ = false;
+    mutable off_t size_ = 0;
+    mutable std::timespec modified_{};
 };
 
 }  // namespace keyrot

@@ -2,6 +2,7 @@
 // Any exception but keyrot::error, any sanitizer report, or a key that is
 // not a finite unit quaternion is a finding; so is a table whose rows read
 // otherwise in one pass (the fast path for plain rows) than cell by cell.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -18,8 +19,9 @@ namespace {
 
 /// `text` with every cell of the rows after the header quoted, blank lines
 /// as they are: the same table, but rows the reader must split into cells.
-/// std::nullopt where quoting would change what the text says: quotes,
-/// comments and carriage returns (a line's end).
+/// The spaces around a cell stay outside its quotes (a quoted cell keeps
+/// the spaces inside). std::nullopt where quoting would change what the
+/// text says: quotes, comments and carriage returns (a line's end).
 std::optional<std::string> with_quoted_cells(std::string_view text) {
     if (text.find_first_of("\"#\r") != std::string_view::npos) return std::nullopt;
     std::string out;
@@ -32,9 +34,15 @@ std::optional<std::string> with_quoted_cells(std::string_view text) {
             header = header && keyrot::trim(line).empty();  // blank lines before the header stay blank
             out += line;
         } else {
-            out += '"';
-            for (char c : line) out += c == ',' ? std::string_view("\",\"") : std::string_view(&c, 1);
-            out += '"';
+            for (std::size_t start = 0; start <= line.size();) {
+                const std::size_t comma = std::min(line.find(',', start), line.size());
+                const std::string_view cell = line.substr(start, comma - start), content = keyrot::trim(cell);
+                const std::size_t lead = content.empty() ? cell.size() : static_cast<std::size_t>(content.data() - cell.data());
+                out.append(cell.substr(0, lead)).append("\"").append(content).append("\"");
+                out.append(cell.substr(std::min(cell.size(), lead + content.size())));
+                if (comma < line.size()) out += ',';
+                start = comma + 1;
+            }
         }
         if (nl != std::string_view::npos) out += '\n';
     }

@@ -1,0 +1,143 @@
+#!/usr/bin/env bash
+# Output safety under faults: nothing written where it does not belong,
+# nothing lost, failures never reported as success.
+# Usage: safety_test.sh KEYROT DATA_DIR
+set -u
+keyrot=$1
+data=$2
+work=$(mktemp -d)
+chmod 755 "$work"
+trap 'rm -rf "$work"' EXIT
+# shellcheck source=tests/expect.sh
+source "$(dirname "$0")/expect.sh"
+cd "$work" || exit 1
+cp "$data/walk.csv" walk.csv
+"$keyrot" resample walk.csv --fps 1 > walk1.csv
+
+# ---- -o naming a standard stream writes into it, where the shell pointed it
+echo log > log.csv
+"$keyrot" resample walk.csv --fps 1 -o /dev/stdout >> log.csv
+expect "-o /dev/stdout >> log keeps the log" 0 "log
+$(cat walk1.csv)" -- cat log.csv
+{ echo header; "$keyrot" resample walk.csv --fps 1 -o /dev/stdout; echo footer; } > framed.csv
+expect "-o /dev/stdout between other writes" 0 "header
+$(cat walk1.csv)
+footer" -- cat framed.csv
+echo earlier > err.log
+"$keyrot" resample walk.csv --fps 1 -o /dev/stderr 2>> err.log
+expect "-o /dev/stderr 2>> err.log" 0 "earlier
+$(cat walk1.csv)" -- cat err.log
+
+# ---- links
+ln -s nowhere.csv dangling.csv
+expect "-o onto a dangling link: the file it names, the link kept" 0 "dangling.csv -> nowhere.csv
+$(cat walk1.csv)" -- bash -c "'$keyrot' resample walk.csv --fps 1 -o dangling.csv && echo \"dangling.csv -> \$(readlink dangling.csv)\" && cat nowhere.csv"
+ln -s loop_a loop_b && ln -s loop_b loop_a
+expect_error "-o onto a link loop" "keyrot: cannot write 'loop_a': Too many levels of symbolic links" -- \
+    "$keyrot" resample walk.csv -o loop_a
+
+# ---- another user's link, a read-only file, a set-user-ID file (root can make a second user)
+other=keyrot-test-other
+if [[ $(id -u) == 0 ]] && { id "$other" >/dev/null 2>&1 || useradd -M -s /usr/sbin/nologin "$other" 2>/dev/null; }; then
+    mkdir -m 1777 shared
+    echo precious > victim.txt
+    su -s /bin/sh "$other" -c "ln -s '$work/victim.txt' shared/walk.csv && ln -s '$work/victim.txt' shared/result.csv"
+    expect_error "--output-dir: another user's link" "keyrot: cannot write 'shared/walk.csv': 'shared/walk.csv' is a symbolic link of another user (uid $(id -u "$other")): expected a file, or a link of yours or of the directory's owner" -- \
+        "$keyrot" resample walk.csv --output-dir shared
+    expect_error "-o: another user's link" "keyrot: cannot write 'shared/result.csv': 'shared/result.csv' is a symbolic link of another user (uid $(id -u "$other")): expected a file, or a link of yours or of the directory's owner" -- \
+        "$keyrot" resample walk.csv -o shared/result.csv
+    expect "the victim untouched, no temporary beside it" 0 "precious
+0" -- bash -c "cat victim.txt; ls -a | grep -c keyrot- || true"
+    mkdir -m 777 open && cp walk.csv open/readonly.csv && chmod 444 open/readonly.csv && chown "$other" open
+    expect "a 0444 file is refused, as > refuses it" 0 "keyrot: cannot write 'open/readonly.csv': Permission denied
+2
+$(cat walk.csv)" -- bash -c "su -s /bin/sh $other -c \"'$keyrot' resample walk.csv -o open/readonly.csv; echo \\\$?\" 2>&1; cat open/readonly.csv"
+    touch setuid.csv && chmod 4755 setuid.csv
+    expect "the set-user-ID bit is not passed on" 0 "755" -- bash -c "'$keyrot' resample walk.csv -o setuid.csv && stat -c %a setuid.csv"
+else
+    echo "skipped: other users' links and read-only files need root to make a second user"
+fi
+
+# ---- failures to write are failures
+for args in "info walk.csv" "slerp 1,0,0,0 0,0,0,1 --steps 4" "compare walk1.csv walk1.csv" \
+    "compare walk1.csv walk1.csv --report json" "--help" "--version" "resample walk.csv"; do
+    # shellcheck disable=SC2086
+    expect_error "$args > /dev/full" "keyrot: cannot write to standard output: No space left on device" -- \
+        bash -c "'$keyrot' $args > /dev/full"
+    # shellcheck disable=SC2086
+    expect_error "$args, standard output closed" "keyrot: cannot write to standard output: it is closed" -- \
+        bash -c "'$keyrot' $args >&-"
+done
+expect "standard output closed, -o FILE" 0 "$(cat walk1.csv)" -- bash -c "'$keyrot' resample walk.csv --fps 1 -o closed_out.csv >&- && cat closed_out.csv"
+# a warning with standard error closed goes nowhere, not into the spooled input
+printf 'time,qw,qx,qy,qz\n0,2,0,0,0\n1,2,0,0,0\n' > norm.csv
+expect "standard error closed" 0 "$("$keyrot" resample norm.csv --fps 1 2>/dev/null)" -- bash -c "cat norm.csv | '$keyrot' resample --fps 1 2>&-"
+if [[ $(id -u) == 0 ]] && mkdir small && mount -t tmpfs -o size=8k tmpfs small 2>/dev/null; then
+    expect_error "slerp into a full filesystem" "keyrot: cannot write to standard output: No space left on device" -- \
+        bash -c "'$keyrot' slerp 1,0,0,0 0,0,0,1 --steps 400 > small/table.csv"
+    expect_error "-o into a full filesystem" "keyrot: cannot write 'small/table.csv': No space left on device" -- \
+        bash -c "rm -f small/table.csv; '$keyrot' slerp 1,0,0,0 0,0,0,1 --steps 400 -o small/table.csv"
+    expect "nothing left in it" 0 "" -- ls -A small
+    umount small
+else
+    echo "skipped: a full filesystem needs root and a tmpfs"
+fi
+
+# ---- a catchable signal leaves no temporary file, and the target as it was
+awk 'BEGIN { print "time,qw,qx,qy,qz"; for (i = 0; i < 100000; i++) printf "%d,%.17g,0,0,%.17g\n", i, cos(i / 7), sin(i / 7) }' > long.csv
+expect "SIGINT, SIGTERM, SIGHUP mid-write" 0 "clean" -- /usr/bin/env python3 -c '
+import glob, os, signal, subprocess, sys, time
+keyrot = sys.argv[1]
+open("target.csv", "w").write("precious\n")
+for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP) * 3:
+    p = subprocess.Popen([keyrot, "resample", "long.csv", "--fps", "100", "-o", "target.csv"])
+    for _ in range(2000):  # until the temporary file is there
+        if glob.glob(".target.csv.keyrot-*") or p.poll() is not None:
+            break
+        time.sleep(0.001)
+    p.send_signal(sig)
+    p.wait()
+    left = glob.glob(".target.csv.keyrot-*")
+    if left or (p.returncode == -sig and open("target.csv").read() != "precious\n"):
+        sys.exit("left %s after signal %d (status %d)" % (left, sig, p.returncode))
+    open("target.csv", "w").write("precious\n")
+print("clean")' "$keyrot"
+
+# ---- input changed while keyrot reads it: the checked rows or an error, never a mix
+awk 'BEGIN { print "time,qw,qx,qy,qz"; for (i = 0; i < 200000; i++) printf "%d,%.17g,0,0,%.17g\n", i, cos(i / 7), sin(i / 7) }' > growing.csv
+"$keyrot" resample growing.csv --fps 1 > growing_before.csv
+{ cat growing.csv; echo '300000,1,0,0,0'; } > grown.csv
+"$keyrot" resample grown.csv --fps 1 > growing_after.csv
+# status 0 with the rows of the file before or after the append (it came
+# before keyrot opened it), or status 2 and nothing on standard output
+expect "appended while read" 0 "consistent" -- bash -c "
+    for i in 1 2 3 4 5 6; do
+        cp growing.csv changing.csv
+        (sleep 0.0\$i; echo '300000,1,0,0,0' >> changing.csv) &
+        '$keyrot' resample changing.csv --fps 1 > out.csv 2>err.txt
+        rc=\$?
+        wait
+        if [[ \$rc == 0 ]]; then
+            cmp -s out.csv growing_before.csv || cmp -s out.csv growing_after.csv || { echo \"run \$i: status 0, other rows\"; exit; }
+        elif [[ \$rc != 2 || -s out.csv || \$(cat err.txt) != \"keyrot: 'changing.csv' changed while keyrot was reading it: expected it to stay as it was until keyrot is done\" ]]; then
+            echo \"run \$i: status \$rc, \$(wc -c <out.csv) bytes, \$(cat err.txt)\"; exit
+        fi
+    done
+    echo consistent"
+
+# ---- what a message quotes stays readable; control bytes never reach a terminal raw
+{ printf 'time,qw,qx,qy,qz\n0,'; head -c 50000000 /dev/zero | tr '\0' '1'; printf ',0,0,0\n'; } > long_value.csv
+expect "a 50 MB value is cut in the message" 0 "1" -- bash -c "'$keyrot' resample long_value.csv 2>&1 | wc -l"
+expect_error "--fps 1e-320" "keyrot: --fps: expected a positive frame rate, got 1e-320" -- "$keyrot" resample walk.csv --fps 1e-320
+escape=$(printf 'x\033]0;title\007.csv')
+cp walk.csv "$escape"
+expect "info escapes a file name's control bytes" 0 'x\x1b]0;title\x07.csv: 2 tracks, csv' -- bash -c "'$keyrot' info '$escape' | head -n 1"
+
+# ---- track names that need quoting survive a CSV round trip
+printf 'track,time,qw,qx,qy,qz\n"#hash",0,1,0,0,0\n" lead",0,1,0,0,0\n"a,b",0,1,0,0,0\n' > names.csv
+expect "track names through CSV twice" 0 '{"track": "#hash", "time": 0, "quat": [1, 0, 0, 0]}
+{"track": " lead", "time": 0, "quat": [1, 0, 0, 0]}
+{"track": "a,b", "time": 0, "quat": [1, 0, 0, 0]}' -- bash -c \
+    "'$keyrot' convert names.csv | '$keyrot' convert | '$keyrot' convert --to ndjson --rep quat | tail -n +2"
+
+summary
