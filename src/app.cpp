@@ -23,6 +23,7 @@ read_options reading(const options& o, const input_source& src) {
     ro.order = o.order;
     ro.given.angles = o.radians;
     ro.given.key_fps = o.key_fps.has_value();
+    ro.max_bytes = o.max_bytes;
     return ro;
 }
 

@@ -33,6 +33,8 @@ void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
         ->check(CLI::IsMember({"csv", "json", "ndjson"}));
     sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
     sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
+    sub.add_option("--max-bytes", o.max_bytes, "most bytes a CSV or NDJSON line, or a JSON document read whole, may "
+                                               "take (default 268435456: 256 MiB)");
 }
 
 /// The angle and quaternion conventions of the input (and of the output,
@@ -96,6 +98,7 @@ void finish(options& o, const raw_flags& f) {
     o.how = *parse_method(f.method);
     o.way = *parse_path(f.path);
     check_rate("--fps", o.fps);
+    if (o.max_bytes < 1) throw usage_error("--max-bytes: expected at least 1 byte, got 0");
     if (!(std::isfinite(o.max_frames) && o.max_frames >= 1))
         throw usage_error(fmt::format("--max-frames: expected a number of frames, at least 1, got {}", o.max_frames));
     if (f.jobs) {

@@ -216,7 +216,19 @@ bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, w
     std::string text;
     text.reserve(static_cast<std::size_t>(std::max<std::streamsize>(0, in.rdbuf()->in_avail())));
     std::array<char, std::size_t{1} << 16> chunk;
-    while (const auto got = in.rdbuf()->sgetn(chunk.data(), chunk.size())) text.append(chunk.data(), static_cast<std::size_t>(got));
+    while (const auto got = in.rdbuf()->sgetn(chunk.data(), chunk.size())) {
+        if (text.empty()) {
+            // Not JSON from its first character (random bytes, /dev/zero): said
+            // now, from the first block, rather than after reading all there is.
+            const std::string_view start = without_bom(std::string_view(chunk.data(), static_cast<std::size_t>(got)));
+            const auto first = start.find_first_not_of(" \t\r\n");
+            if (first != std::string_view::npos && start[first] != '{' && start[first] != '[') parse(start, opts.source, 1);
+        }
+        if (text.size() + static_cast<std::size_t>(got) > opts.max_bytes)
+            throw input_error(opts.source, fmt::format("JSON document longer than {} bytes (--max-bytes N raises the limit)",
+                                                       opts.max_bytes));
+        text.append(chunk.data(), static_cast<std::size_t>(got));
+    }
     flat_json flat;
     if (flat.parse(text)) return read_json_value(flat.root(), opts, sink, warn);
     return read_json_value(dom_value(parse(text, opts.source, 1)), opts, sink, warn);
@@ -285,7 +297,7 @@ bool is_header(Value j) {
 class ndjson_reader final : public key_reader {
 public:
     ndjson_reader(std::istream& in, const read_options& opts, warnings& warn)
-        : lines_(in), settings_(opts.settings), keys_(opts.source, opts.order) {
+        : lines_(in, opts.max_bytes, opts.source), settings_(opts.settings), keys_(opts.source, opts.order) {
         std::string_view line;
         bool found = false;
         while (!found && lines_.next(line)) found = !trim(line).empty();

@@ -30,14 +30,16 @@ namespace {
 /// the value being read (a key, a setting) is held, not what came before.
 class json_text {
 public:
-    explicit json_text(std::istream& in) : in_(in) {}
+    /// At most `max_held` bytes of one value are held: a longer one is declined.
+    json_text(std::istream& in, std::size_t max_held) : in_(in), max_held_(max_held) {}
 
     /// The next character that is not white space, not taken; 0 at the end
     /// (and for a NUL byte, which is no JSON either: at_end() tells them apart).
     char peek() {
-        for (;;) {
+        for (std::size_t skipped = 0;; skipped += buf_.size()) {
             for (; at_ < buf_.size(); ++at_)
                 if (!is_space(buf_[at_])) return buf_[at_];
+            if (skipped > max_held_) decline();  // endless white space: the whole reader's limit says so
             if (!fill()) return 0;
         }
     }
@@ -132,6 +134,7 @@ private:
     bool fill() {
         buf_.erase(0, at_);
         at_ = 0;
+        if (buf_.size() > max_held_) decline();  // the whole reader says what the limit is
         const std::size_t size = buf_.size();
         buf_.resize(size + block);
         const auto got = in_.rdbuf()->sgetn(buf_.data() + size, static_cast<std::streamsize>(block));
@@ -141,6 +144,7 @@ private:
 
     static constexpr std::size_t block = std::size_t{1} << 16;
     std::istream& in_;
+    std::size_t max_held_;
     std::string buf_;
     std::size_t at_ = 0;
 };
@@ -210,7 +214,7 @@ private:
 class json_stream_reader final : public key_reader {
 public:
     json_stream_reader(std::istream& in, const read_options& opts, warnings& warn)
-        : text_(in), opts_(opts), warn_(warn), document_(object::kind::document, "", "", opts.settings, opts.order),
+        : text_(in, opts.max_bytes), opts_(opts), warn_(warn), document_(object::kind::document, "", "", opts.settings, opts.order),
           arrays_(std::make_shared<key_arrays>(opts.source)), keys_(arrays_) {
         const char c = text_.peek();
         if (c == '[') {

@@ -9,6 +9,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
+#include <utility>
+
+#include "keyrot/error.hpp"
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -385,7 +388,8 @@ std::string_view without_bom(std::string_view text) noexcept {
     return text.substr(0, 3) == "\xEF\xBB\xBF" ? text.substr(3) : text;
 }
 
-line_reader::line_reader(std::istream& in) : in_(in), buf_(std::size_t{1} << 16, '\0') {}
+line_reader::line_reader(std::istream& in, std::size_t max_line, std::string source)
+    : in_(in), max_line_(max_line), source_(std::move(source)), buf_(std::size_t{1} << 16, '\0') {}
 
 bool line_reader::fill() {
     if (at_end_) return false;
@@ -419,6 +423,11 @@ bool line_reader::next(std::string_view& line) {
             break;
         }
         const std::size_t offset = searched - begin_;
+        if (end_ - begin_ > max_line_)
+            throw input_error(fmt::format("{}:{}", source_, number_ + 1),
+                              fmt::format("line longer than {} bytes: expected the lines of a keyframe table "
+                                          "(--max-bytes N raises the limit)",
+                                          max_line_));
         if (!fill()) {
             if (begin_ == end_) return false;
             line = std::string_view(buf_.data() + begin_, end_ - begin_);  // no final newline

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <streambuf>
 
@@ -34,21 +35,50 @@ std::pair<off_t, std::timespec> version_of(int fd) {
     return {st.st_size, st.st_mtim};
 }
 
-/// Reads an open file from the start with pread, so that every stream on
-/// the same descriptor has its own position. A read error throws
-/// keyrot::error naming `source`.
+/// Writes all of `size` bytes at `offset`, or returns false with errno set.
+bool write_all_at(int fd, const char* data, std::size_t size, off_t offset) {
+    while (size > 0) {
+        const ssize_t put = ::pwrite(fd, data, size, offset);
+        if (put < 0 && errno == EINTR) continue;
+        if (put <= 0) return false;
+        data += put, size -= static_cast<std::size_t>(put), offset += put;
+    }
+    return true;
+}
+
+}  // namespace
+
+/// An input that can be read only once (a pipe, standard input), copied
+/// into an unlinked temporary file as the first pass reads it: later passes
+/// read the copy, and what bounds a reader (a line's length) bounds the
+/// copy too, so that endless input (/dev/zero) stops at the reader's limit.
+struct input_source::spool {
+    std::function<std::size_t(char*, std::size_t)> read_some;  // from the input; 0 at its end
+    std::string path;      // of the copy, for messages
+    int fd = -1;           // the copy
+    off_t size = 0;        // bytes copied so far
+    bool complete = false;  // the input's end was read
+};
+
+namespace {
+
+/// Reads a file from `start` with pread, so that every stream on the same
+/// descriptor has its own position: up to `end` (what the first pass
+/// checked), or, for a spool, on into the input as far as it goes. A read
+/// error throws keyrot::error naming `source`.
 class descriptor_buffer : public std::streambuf {
 public:
-    /// Reads [start, end) of the file.
-    descriptor_buffer(int fd, off_t start, off_t end, const std::string& source)
-        : fd_(fd), source_(source), offset_(start), end_(end) {}
+    descriptor_buffer(int fd, off_t start, off_t end, input_source::spool* spool, const std::string& source)
+        : fd_(fd), source_(source), offset_(start), end_(end), spool_(spool) {}
 
 protected:
     int_type underflow() override {
         if (gptr() < egptr()) return traits_type::to_int_type(*gptr());
-        if (offset_ >= end_) return traits_type::eof();  // what grew since is not what was checked
+        if (spool_ && offset_ == spool_->size) return copied_more() ? traits_type::to_int_type(*gptr()) : traits_type::eof();
+        const off_t end = spool_ ? spool_->size : end_;
+        if (offset_ >= end) return traits_type::eof();  // what grew since is not what was checked
         ssize_t got;
-        do got = ::pread(fd_, buffer_.data(), std::min<std::size_t>(buffer_.size(), static_cast<std::size_t>(end_ - offset_)), offset_);
+        do got = ::pread(fd_, buffer_.data(), std::min<std::size_t>(buffer_.size(), static_cast<std::size_t>(end - offset_)), offset_);
         while (got < 0 && errno == EINTR);
         if (got < 0) throw error(fmt::format("cannot read '{}': {}", source_, errno_text()));
         if (got == 0) throw error(changed(source_));
@@ -57,21 +87,35 @@ protected:
         return traits_type::to_int_type(*gptr());
     }
 
-    /// The bytes left in a regular file, so that a reader of the whole
-    /// stream (JSON) can allocate once.
-    std::streamsize showmanyc() override { return end_ - offset_; }
+    /// The bytes known to be left, so that a reader of the whole stream
+    /// (JSON) can allocate once.
+    std::streamsize showmanyc() override { return (spool_ ? spool_->size : end_) - offset_; }
 
 private:
+    /// More of a spooled input, read and copied; false at its end.
+    bool copied_more() {
+        if (spool_->complete) return false;
+        const std::size_t got = spool_->read_some(buffer_.data(), buffer_.size());
+        if (got == 0) return !(spool_->complete = true);
+        if (!write_all_at(fd_, buffer_.data(), got, spool_->size))
+            throw error(fmt::format("cannot store {} in '{}': {}", source_, spool_->path, errno_text()));
+        spool_->size += static_cast<off_t>(got);
+        offset_ = spool_->size;
+        setg(buffer_.data(), buffer_.data(), buffer_.data() + got);
+        return true;
+    }
+
     int fd_;
     const std::string& source_;
     off_t offset_, end_;
+    input_source::spool* spool_;
     std::array<char, std::size_t{1} << 16> buffer_;
 };
 
 class descriptor_stream : public std::istream {
 public:
-    descriptor_stream(int fd, off_t first, off_t past_end, const std::string& source)
-        : std::istream(nullptr), buffer_(fd, first, past_end, source) {
+    descriptor_stream(int fd, off_t first, off_t past_end, input_source::spool* spool, const std::string& source)
+        : std::istream(nullptr), buffer_(fd, first, past_end, spool, source) {
         rdbuf(&buffer_);
         exceptions(badbit);  // lets the buffer's error through istream's catch
     }
@@ -80,23 +124,9 @@ private:
     descriptor_buffer buffer_;
 };
 
-/// Writes all of `size` bytes, or returns false with errno set.
-bool write_all(int fd, const char* data, std::size_t size) {
-    while (size > 0) {
-        const ssize_t put = ::write(fd, data, size);
-        if (put < 0 && errno == EINTR) continue;
-        if (put <= 0) return false;
-        data += put, size -= static_cast<std::size_t>(put);
-    }
-    return true;
-}
-
-/// A temporary file (not memory) holding what `read_some` gives until it
-/// gives 0, unlinked at once so that nothing is left behind however the
-/// process ends. `read_some(buffer, size)` returns the bytes read, or
-/// throws keyrot::error.
-template <class Read>
-int spool(const std::string& source, Read&& read_some) {
+/// An unlinked temporary file for a copy of `source`, read by `read_some`.
+std::unique_ptr<input_source::spool> make_spool(const std::string& source,
+                                                std::function<std::size_t(char*, std::size_t)> read_some) {
     std::error_code no_directory;
     const auto directory = std::filesystem::temp_directory_path(no_directory);
     if (no_directory) {
@@ -104,21 +134,13 @@ int spool(const std::string& source, Read&& read_some) {
         throw error(fmt::format("cannot store {} in a temporary file: {}{}", source,
                                 tmpdir ? fmt::format("$TMPDIR '{}': ", tmpdir) : "", no_directory.message()));
     }
-    std::string path = (directory / "keyrot-input-XXXXXX").string();
-    const int fd = ::mkostemp(path.data(), O_CLOEXEC);
-    if (fd < 0) throw error(fmt::format("cannot store {} in '{}': {}", source, path, errno_text()));
-    ::unlink(path.c_str());
-    std::array<char, std::size_t{1} << 16> chunk;
-    try {
-        while (const std::size_t got = read_some(chunk.data(), chunk.size())) {
-            if (!write_all(fd, chunk.data(), got))
-                throw error(fmt::format("cannot store {} in '{}': {}", source, path, errno_text()));
-        }
-    } catch (...) {
-        ::close(fd);
-        throw;
-    }
-    return fd;
+    auto spool = std::make_unique<input_source::spool>();
+    spool->path = (directory / "keyrot-input-XXXXXX").string();
+    spool->fd = ::mkostemp(spool->path.data(), O_CLOEXEC);
+    if (spool->fd < 0) throw error(fmt::format("cannot store {} in '{}': {}", source, spool->path, errno_text()));
+    ::unlink(spool->path.c_str());  // nothing left behind, however the process ends
+    spool->read_some = std::move(read_some);
+    return spool;
 }
 
 }  // namespace
@@ -135,22 +157,17 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
         }
         // A pipe, a FIFO, process substitution, /dev/stdin, a device, or a
         // file whose size says nothing (/proc's): read once, as standard
-        // input is, into a file that can be read twice.
-        const bool directory = S_ISDIR(st.st_mode);
-        try {
-            if (directory) throw error(fmt::format("cannot read '{}': it is a directory", name));
-            fd_ = spool(fmt::format("'{}'", name), [&](char* buffer, std::size_t size) {
-                ssize_t got;
-                do got = ::read(fd, buffer, size);
-                while (got < 0 && errno == EINTR);
-                if (got < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
-                return static_cast<std::size_t>(got);
-            });
-        } catch (...) {
-            ::close(fd);
-            throw;
-        }
-        ::close(fd);
+        // input is.
+        input_fd_ = fd;
+        if (S_ISDIR(st.st_mode)) throw error(fmt::format("cannot read '{}': it is a directory", name));
+        spool_ = make_spool(fmt::format("'{}'", name), [fd, name](char* buffer, std::size_t size) {
+            ssize_t got;
+            do got = ::read(fd, buffer, size);
+            while (got < 0 && errno == EINTR);
+            if (got < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
+            return static_cast<std::size_t>(got);
+        });
+        fd_ = spool_->fd;
         return;
     }
     if (!stdin_stream) throw error("cannot read '<stdin>': it is closed");
@@ -167,15 +184,20 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
             return;
         }
     }
-    fd_ = spool("standard input", [&](char* buffer, std::size_t size) {
+    spool_ = make_spool("standard input", [&stdin_stream](char* buffer, std::size_t size) {
         stdin_stream.read(buffer, static_cast<std::streamsize>(size));
         return static_cast<std::size_t>(stdin_stream.gcount());
     });
+    fd_ = spool_->fd;
 }
 
-input_source::~input_source() { ::close(fd_); }
+input_source::~input_source() {
+    ::close(fd_);
+    if (input_fd_ >= 0) ::close(input_fd_);
+}
 
 std::unique_ptr<std::istream> input_source::open() const {
+    if (spool_) return std::make_unique<descriptor_stream>(fd_, 0, 0, spool_.get(), source_);
     // Each pass reads what the first one checked: a file that changed in
     // between is an error before the pass that writes begins.
     const auto [size, modified] = version_of(fd_);
@@ -184,7 +206,7 @@ std::unique_ptr<std::istream> input_source::open() const {
     } else if (size != size_ || modified.tv_sec != modified_.tv_sec || modified.tv_nsec != modified_.tv_nsec) {
         throw error(changed(source_));
     }
-    return std::make_unique<descriptor_stream>(fd_, start_, std::max(start_, size_), source_);
+    return std::make_unique<descriptor_stream>(fd_, start_, std::max(start_, size_), nullptr, source_);
 }
 
 format input_source::detect(std::optional<format> given) const {

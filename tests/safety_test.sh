@@ -125,6 +125,20 @@ expect "appended while read" 0 "consistent" -- bash -c "
     done
     echo consistent"
 
+# ---- endless or random input ends in one error, within --max-bytes
+for from in csv ndjson; do
+    expect_error "/dev/zero as $from" "keyrot: /dev/zero:1: line longer than 1000000 bytes: expected the lines of a keyframe table (--max-bytes N raises the limit)" -- \
+        timeout 60 "$keyrot" resample /dev/zero --from "$from" --max-bytes 1000000
+done
+expect_error "/dev/zero as JSON" "keyrot: /dev/zero:1:1: invalid JSON: syntax error while parsing value - unexpected end of input; expected '[', '{', or a literal" -- \
+    timeout 60 "$keyrot" resample /dev/zero --from json
+expect_error "a JSON document past --max-bytes" "keyrot: <stdin>: JSON document longer than 1000000 bytes (--max-bytes N raises the limit)" -- \
+    timeout 60 bash -c "{ echo '{\"keys\": ['; cat /dev/zero | tr '\\0' ' '; } | '$keyrot' resample --from json --max-bytes 1000000"
+for from in csv json ndjson; do
+    expect "random bytes as $from" 0 "2 1" -- timeout 60 bash -c \
+        "head -c 10000000 /dev/urandom | '$keyrot' resample --from $from > random.out 2> random.err; echo \$? \$(wc -l < random.err)"
+done
+
 # ---- what a message quotes stays readable; control bytes never reach a terminal raw
 { printf 'time,qw,qx,qy,qz\n0,'; head -c 50000000 /dev/zero | tr '\0' '1'; printf ',0,0,0\n'; } > long_value.csv
 expect "a 50 MB value is cut in the message" 0 "1" -- bash -c "'$keyrot' resample long_value.csv 2>&1 | wc -l"

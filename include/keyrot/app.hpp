@@ -34,6 +34,7 @@ struct options {
     method how = method::slerp;
     path way = path::shortest;
     double max_frames = resample_options{}.max_frames;  ///< per track (--max-frames)
+    std::size_t max_bytes = default_max_bytes;         ///< a line or a JSON document read whole (--max-bytes)
     unsigned jobs = 0;      ///< --jobs: files converted at once; 0 = the number of cores
     bool progress = false;  ///< a progress line on err for several files (main: when stderr is a terminal)
 

@@ -25,6 +25,8 @@ std::optional<format> format_of_path(std::string_view path);
 /// the first line is a whole object and more lines follow (NDJSON); else CSV.
 format sniff_format(std::string_view start);
 
+inline constexpr std::size_t default_max_bytes = std::size_t{256} << 20;
+
 /// Everything a reader needs besides the text.
 struct read_options {
     std::string source;      ///< file name for messages, "<stdin>" for stdin
@@ -35,6 +37,9 @@ struct read_options {
     struct {
         bool angles = false, key_fps = false;
     } given;
+    /// Most bytes a CSV or NDJSON line, or a JSON document read whole, may
+    /// take: endless input (/dev/zero) ends in an error, not in all memory.
+    std::size_t max_bytes = default_max_bytes;
 };
 
 struct raw_document {

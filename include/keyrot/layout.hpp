@@ -122,10 +122,12 @@ inline std::optional<double> parse_number(std::string_view text) {
 
 /// Reads a stream line by line in large chunks, for the line-based readers:
 /// '\n' ends a line, a '\r' before it is dropped, and a UTF-8 byte-order
-/// mark at the start is skipped. A line may be longer than a chunk.
+/// mark at the start is skipped. A line may be longer than a chunk, but not
+/// than `max_line` bytes: next() then throws input_error naming `source`
+/// and the line.
 class line_reader {
 public:
-    explicit line_reader(std::istream& in);
+    line_reader(std::istream& in, std::size_t max_line, std::string source);
     /// The next line (valid until the next call), or false at the end.
     /// number() is its 1-based number.
     bool next(std::string_view& line);
@@ -135,6 +137,8 @@ private:
     bool fill();  // reads more; false at the end of the stream
 
     std::istream& in_;
+    std::size_t max_line_;
+    std::string source_;
     std::string buf_;
     std::size_t begin_ = 0, end_ = 0;  // unread bytes in buf_
     std::size_t number_ = 0;

@@ -1,7 +1,8 @@
 #pragma once
-// The inputs of a command: files, a file on standard input, or other
-// standard input copied to a temporary file (unlinked at once), so that an
-// input can be read twice (validated first, then streamed) in constant memory.
+// The inputs of a command: files, a file on standard input, or anything
+// that can be read only once (a pipe, a FIFO, a device) copied to a
+// temporary file (unlinked at once) as it is first read, so that an input can
+// be read twice (validated first, then streamed) in constant memory.
 #include <sys/types.h>
 
 #include <ctime>
@@ -27,6 +28,8 @@ public:
     input_source& operator=(const input_source&) = delete;
     ~input_source();
 
+    struct spool;  // how an input that can be read only once is read again
+
     const std::string& name() const noexcept { return name_; }      ///< as given
     const std::string& source() const noexcept { return source_; }  ///< for messages: the path or "<stdin>"
     /// A fresh stream from the start (each has its own position).
@@ -36,7 +39,9 @@ public:
 
 private:
     std::string name_, source_;
-    int fd_ = -1;
+    int fd_ = -1;        // the file, or the spool's copy
+    int input_fd_ = -1;  // a named input that is spooled (a FIFO)
+    std::unique_ptr<spool> spool_;
     off_t start_ = 0;  // where the input begins in fd_
     // The file as the first open() found it (size, modification time).
     mutable bool opened_ = false;
