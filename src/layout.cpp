@@ -441,6 +441,13 @@ bool line_reader::next(std::string_view& line) {
     return true;
 }
 
+std::optional<double> underflow_to_zero(std::string_view text) {
+    const std::string copy(text);  // (strtod needs the terminating NUL)
+    const double v = std::strtod(copy.c_str(), nullptr);
+    if (v != 0) return std::nullopt;  // too large: HUGE_VAL
+    return v;
+}
+
 bool is_valid_utf8(std::string_view text) noexcept {
     const auto* p = reinterpret_cast<const unsigned char*>(text.data());
     const auto* end = p + text.size();

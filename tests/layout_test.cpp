@@ -201,6 +201,13 @@ TEST_CASE("parse_number reads finite doubles only") {
     const auto negative_zero = parse_number("-0");
     REQUIRE(negative_zero);
     CHECK((*negative_zero == 0 && std::signbit(*negative_zero)));
+    // Too small for a double: the nearest, zero, as the JSON readers and
+    // strtod read it (one rule for CSV and JSON); too large stays an error.
+    CHECK(parse_number("1e-400") == 0);
+    const auto tiny_negative = parse_number("-1e-400");
+    REQUIRE(tiny_negative);
+    CHECK((*tiny_negative == 0 && std::signbit(*tiny_negative)));
+    CHECK(parse_number("4.9e-324") == 4.9e-324);  // the least subnormal is no underflow
 }
 
 TEST_CASE("UTF-8 validation") {

@@ -130,6 +130,11 @@ expect "a misspelt document field warns" 0 "keyrot: warning: <stdin>: ignoring u
 expect "a misspelt NDJSON field warns" 0 "keyrot: warning: <stdin>: ignoring unknown field 'angle_unit' (<stdin>:1)" -- bash -c \
     "printf '{\"time\": 0, \"rotvec\": [0,0,1], \"angle_unit\": \"radians\"}\n' | '$keyrot' convert 2>&1 >/dev/null"
 
+# ---- one rule for numbers in CSV and JSON: too small is 0, too large an error
+expect "1e-400 in CSV and JSON alike" 0 "0,1,0,0,0
+0,1,0,0,0" -- bash -c "printf 'time,qw,qx,qy,qz\n0,1,1e-400,0,0\n' | '$keyrot' convert --rep quat | tail -n 1 &&
+    printf '{\"keys\": [{\"time\": 0, \"quat\": [1, 1e-400, 0, 0]}]}' | '$keyrot' convert --rep quat --to csv | tail -n 1"
+
 # ---- every flag a command lists does what it says
 expect "info -o info.json writes JSON" 0 "walk.csv 2" -- bash -c \
     "'$keyrot' info walk.csv -o info.json && /usr/bin/env python3 -c 'import json; d = json.load(open(\"info.json\")); print(d[\"source\"], len(d[\"tracks\"]))'"
