@@ -242,17 +242,32 @@ raw_document read_json(std::istream& in, const read_options& opts, warnings& war
 
 namespace {
 
+/// Whether an NDJSON line's object is a header of settings, as keyrot
+/// writes first ({"fps": 24, "rep": "quat", "angles": "degrees"}), rather
+/// than a key: it has neither a time nor a rotation.
+template <class Value>
+bool is_header(Value j) {
+    if (!j.is_object()) return false;
+    for (const char* field : {"time", "t", "frame", "quat", "axis", "rotvec", "matrix"})
+        if (j.member(field)) return false;
+    const auto euler = j.member("euler");
+    return !euler || euler->is_string();
+}
+
 /// The keys on NDJSON lines, each line apart from the others, once the
 /// first key has settled whether lines name their tracks: the reader's own
 /// parser, and copies of it on read_ahead's threads.
 class ndjson_lines final : public line_parser {
 public:
-    ndjson_lines(std::string source, quat_order order) : source_(std::move(source)), order_(order) {}
+    /// `header`: the first line's settings, if it had them.
+    ndjson_lines(std::string source, quat_order order, std::string header = "")
+        : source_(std::move(source)), order_(order), header_(std::move(header)) {}
     /// Whether lines have a "track"; none before the first key.
     std::optional<bool> named() const noexcept { return named_; }
 
     bool parse(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) override {
-        if (trim(line).empty()) return false;
+        // The same header again is two of keyrot's outputs one after the other (cat a.ndjson b.ndjson).
+        if (trim(line).empty() || (!header_.empty() && trim(line) == header_)) return false;
         if (fast_.parse(line)) read(fast_.root(), line_no, track, k);
         else read(dom_value(keyrot::parse(line, source_, line_no)), line_no, track, k);
         return true;
@@ -264,8 +279,12 @@ private:
         const auto where = [&] { return fmt::format("{}:{}", source_, line_no); };
         const auto track_field = j.is_object() ? j.member("track") : std::nullopt;
         if (!named_) named_ = track_field.has_value();
-        if (track_field.has_value() != *named_)
+        if (track_field.has_value() != *named_) {
+            if (is_header(j))
+                throw input_error(where(), "a header line with other settings than the first: expected the lines of one "
+                                           "document (keyrot outputs made with other settings cannot be joined)");
             throw input_error(where(), "some lines have a 'track' and some do not: expected all or none");
+        }
         track.clear();
         if (track_field) {
             if (!track_field->is_string())
@@ -278,21 +297,10 @@ private:
 
     std::string source_;
     quat_order order_;
+    std::string header_;
     std::optional<bool> named_;
     flat_json fast_{detail::max_key_values};  // most lines; the rest, and all errors, by nlohmann-json
 };
-
-/// Whether an NDJSON line's object is a header of settings, as keyrot
-/// writes first ({"fps": 24, "rep": "quat", "angles": "degrees"}), rather
-/// than a key: it has neither a time nor a rotation.
-template <class Value>
-bool is_header(Value j) {
-    if (!j.is_object()) return false;
-    for (const char* field : {"time", "t", "frame", "quat", "axis", "rotvec", "matrix"})
-        if (j.member(field)) return false;
-    const auto euler = j.member("euler");
-    return !euler || euler->is_string();
-}
 
 class ndjson_reader final : public key_reader {
 public:
@@ -319,7 +327,7 @@ public:
         if (parsed) apply_fields(fast.root(), settings_, order, where, settings_object::header, opts, warn);
         else apply_fields(dom_value(keyrot::parse(line, opts.source, lines_.number())), settings_, order, where,
                           settings_object::header, opts, warn);
-        keys_ = ndjson_lines(opts.source, order);
+        keys_ = ndjson_lines(opts.source, order, std::string(trim(line)));
     }
 
     bool named() const override { return keys_.named().value_or(false); }

@@ -46,6 +46,15 @@ for to in csv json ndjson; do
          '$keyrot' compare direct.csv - --tol 1e-9"
 done
 
+# two NDJSON outputs one after the other read as one document; with other settings, an error that says so
+printf 'track,time,qw,qx,qy,qz\nhip,0,1,0,0,0\nhip,1,0,0,0,1\n' > hip.csv
+printf 'track,time,qw,qx,qy,qz\nknee,0,1,0,0,0\nknee,1,0,1,0,0\n' > knee.csv
+expect "cat of two NDJSON outputs" 0 "hip 3
+knee 3" -- bash -c "cat <('$keyrot' resample hip.csv --fps 2 --to ndjson) <('$keyrot' resample knee.csv --fps 2 --to ndjson) |
+    '$keyrot' info --to json | /usr/bin/env python3 -c 'import json,sys; [print(t[\"name\"], t[\"keys\"]) for t in json.load(sys.stdin)[\"tracks\"]]'"
+expect_error "cat of NDJSON outputs at two rates" "keyrot: <stdin>:5: a header line with other settings than the first: expected the lines of one document (keyrot outputs made with other settings cannot be joined)" -- \
+    bash -c "cat <('$keyrot' resample hip.csv --fps 2 --to ndjson) <('$keyrot' resample knee.csv --fps 3 --to ndjson) | '$keyrot' info"
+
 # ---- the key rate travels with frame-numbered keys
 printf 'frame,qw,qx,qy,qz\n0,1,0,0,0\n15,0.9238795325112867,0,0,0.3826834323650898\n30,0.7071067811865476,0,0,0.7071067811865476\n' > anim.csv
 "$keyrot" resample anim.csv --key-fps 30 > anim_direct.csv
