@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "keyrot/layout.hpp"
+#include "keyrot/text.hpp"
 
 namespace keyrot {
 
