@@ -30,7 +30,7 @@ std::vector<std::string> names(const std::array<std::string_view, N>& list) {
 /// Flags for reading keys (every command but slerp).
 void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--from", f.from, "input format (default: by extension, else sniffed)")
-        ->check(CLI::IsMember({"csv", "json", "ndjson"}));
+        ->check(CLI::IsMember(names(format_names)));
     sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
     sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
     sub.add_option("--max-bytes", o.max_bytes, "most bytes a CSV or NDJSON line, or a JSON document read whole, may "
@@ -50,7 +50,7 @@ void add_convention_flags(CLI::App& sub, options& o, raw_flags& f) {
 void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("-o,--output", o.output, "output file (default: standard output)");
     sub.add_option("--to", f.to, "output format (default: extension of -o, else the input format)")
-        ->check(CLI::IsMember({"csv", "json", "ndjson"}));
+        ->check(CLI::IsMember(names(format_names)));
     sub.add_option("--rep", f.rep, "output representation")->check(CLI::IsMember(names(rep_names)));
     add_convention_flags(sub, o, f);
     sub.add_option("--out-euler", f.out_euler, "Euler sequence of the output (default: --euler)");

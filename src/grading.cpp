@@ -72,7 +72,7 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     table_info info;
     info.times = time_columns::time_only;
     info.time_name = "t";
-    info.how = o.how;
+    info.method = to_string(o.how);
     // Rows are written as they are made: --steps may ask for millions.
     const std::optional<std::string> target = o.output && *o.output != "-" ? o.output : std::nullopt;
     chunked_output sink(target, out);

@@ -65,7 +65,7 @@ struct document_facts {
         info.translation = translation();
         if (o.cmd == command::resample) {
             info.fps = o.fps;
-            info.how = o.how;
+            info.method = to_string(o.how);
         } else {
             info.times = time_columns::as_given;
             info.all_frames = all_frames;

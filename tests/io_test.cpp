@@ -778,7 +778,7 @@ TEST_CASE("writers: CSV, JSON and NDJSON tables") {
     table_info info;
     info.translation = true;
     info.fps = 24;
-    info.how = method::slerp;
+    info.method = "slerp";
     write_options w;
     w.representation = rep::quat;
     w.precision = 4;

@@ -9,21 +9,12 @@
 #include <string_view>
 #include <vector>
 
-#include "keyrot/interpolate.hpp"
+#include "keyrot/format.hpp"
+#include "keyrot/frame.hpp"
 #include "keyrot/layout.hpp"
-#include "keyrot/resample.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {
-
-enum class format { csv, json, ndjson };
-std::optional<format> parse_format(std::string_view name);
-std::string_view to_string(format f) noexcept;
-/// ".csv" -> csv, ".json" -> json, ".ndjson" / ".jsonl" -> ndjson.
-std::optional<format> format_of_path(std::string_view path);
-/// Guess from the start of the content: '{' or '[' first means JSON, unless
-/// the first line is a whole object and more lines follow (NDJSON); else CSV.
-format sniff_format(std::string_view start);
 
 inline constexpr std::size_t default_max_bytes = std::size_t{256} << 20;
 
@@ -142,7 +133,7 @@ struct table_info {
     std::string_view time_name = "time";
     std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
     std::optional<double> fps;              ///< the rate `frame` counts at, when rows have frames
-    std::optional<method> how;
+    std::optional<std::string_view> method;  ///< the interpolation's name, for a resampled table
     bool operator==(const table_info&) const = default;
 };
 

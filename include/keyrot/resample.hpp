@@ -5,19 +5,11 @@
 #include <functional>
 #include <optional>
 
+#include "keyrot/frame.hpp"
 #include "keyrot/interpolate.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {
-
-/// One output row: a resampled frame (frame = k) or a converted key.
-struct sample {
-    double time = 0;
-    std::optional<double> frame;
-    quat rotation;
-    std::optional<vec3> translation;
-    bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
-};
 
 struct resample_options {
     double fps = 24;

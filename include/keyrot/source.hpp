@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "keyrot/io.hpp"
+#include "keyrot/format.hpp"
 
 namespace keyrot {
 
