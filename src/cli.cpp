@@ -9,6 +9,9 @@
 #include <ostream>
 
 namespace keyrot {
+
+const char* const version = KEYROT_VERSION;
+
 namespace {
 
 /// The flag values as CLI11 fills them, before they become typed options.

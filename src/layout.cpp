@@ -249,6 +249,10 @@ char* write_shortest(char* out, double v) noexcept {
     *out = '-';
     out += std::signbit(v);
     v = std::fabs(v);
+    // An internal of fmt: pinned to the versions tests/layout_test.cpp has
+    // compared digit for digit with fmt's own "{}".
+    static_assert(FMT_VERSION >= 90000 && FMT_VERSION < 100000,
+                  "fmt::detail::dragonbox::to_decimal is fmt 9's: run the layout tests before taking another fmt");
     const auto decimal = fmt::detail::dragonbox::to_decimal(v);
     const significand_digits digits(decimal.significand);
     const int count = digits.count();

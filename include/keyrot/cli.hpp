@@ -7,7 +7,8 @@
 
 namespace keyrot {
 
-inline constexpr const char* version = "0.1.0";
+/// keyrot's version, from CMake's project().
+extern const char* const version;
 
 /// Parses argv. Returns std::nullopt after printing --help or --version to
 /// `out` (exit status 0). Throws usage_error for a bad command line.
