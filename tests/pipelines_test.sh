@@ -87,6 +87,8 @@ expect "4 fps key, 8 fps answer: only the extra rows fail" 1 "9 rows compared, 4
 expect "4 fps key, 8 fps answer: rates named, no difference claimed" 0 "keyrot: key4.csv counts frames at 4 fps, answer8.csv at 8 fps: rows are matched by time
 keyrot: answer8.csv: frame 1 (0.125 s): only in ACTUAL" -- bash -c \
     "'$keyrot' compare key4.csv answer8.csv 2>&1 >/dev/null | head -n 2"
+expect "no word of rates where one file has no frames" 0 "" -- bash -c \
+    "'$keyrot' compare <('$keyrot' slerp 1,0,0,0 0.7071067811865476,0,0,0.7071067811865476 --steps 4) key4.csv 2>&1 >/dev/null"
 expect "a misnamed track, said once" 0 "keyrot: b.json: track 'Hip' missing from ACTUAL
 keyrot: b.json: track 'Hips' only in ACTUAL" -- bash -c \
     "printf '{\"tracks\": {\"Hip\": [{\"time\": 0, \"quat\": [1,0,0,0]}, {\"time\": 1, \"quat\": [1,0,0,0]}]}}' > a.json &&
