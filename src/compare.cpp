@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string_view>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 
 #include "keyrot/convert.hpp"
@@ -113,8 +114,8 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
             out.rows.push_back(r);
         }
     }
-    std::unordered_map<std::string_view, bool> in_expected;
-    for (const track& e : expected) in_expected.emplace(e.name, true);
+    std::unordered_set<std::string_view> in_expected;
+    for (const track& e : expected) in_expected.insert(e.name);
     for (const track& a : actual)
         if (!in_expected.contains(a.name)) out.extra_tracks.push_back(a.name);
     for (std::size_t i = 0; i < actual.size(); ++i)

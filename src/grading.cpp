@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <ostream>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "commands.hpp"
 #include "keyrot/compare.hpp"
@@ -55,7 +58,6 @@ raw_key operand(const char* name, const std::string& text, const options& o, dou
 
 int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     if (o.how == method::squad) throw usage_error("--method squad needs more than two keys: use resample");
-    std::vector<double> ts = o.ts;
     if (o.steps) {
         if (*o.steps < 1) throw usage_error(fmt::format("--steps: expected at least 1, got {}", *o.steps));
         // A mistyped count must not write for hours.
@@ -63,7 +65,7 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
             throw usage_error(fmt::format("--steps {} makes {} rows: expected at most {:g} (--max-frames N raises the limit)",
                                           *o.steps, *o.steps + 1.0, o.max_frames));
     }
-    if (ts.empty() && !o.steps) throw usage_error("slerp needs -t T or --steps N");
+    if (o.ts.empty() && !o.steps) throw usage_error("slerp needs -t T or --steps N");
     // Each operand is its own source for messages: "keyrot: Q1: quaternion is zero: ...".
     warnings warn0(err, "Q0"), warn1(err, "Q1");
     const track t{"", o.euler, {make_key(operand("Q0", o.q0, o, 0), settings_of(o), warn0),
@@ -84,7 +86,7 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
         writer->row(sample{h, std::nullopt, q, std::nullopt});
         sink.maybe_flush();
     };
-    for (double h : ts) row(h);
+    for (double h : o.ts) row(h);
     if (o.steps)
         for (int i = 0; i <= *o.steps; ++i) row(static_cast<double>(i) / *o.steps);
     writer->finish();
@@ -158,27 +160,33 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
     const auto has_frames = [](const track& t) {
         return std::any_of(t.keys.begin(), t.keys.end(), [](const key& k) { return k.frame.has_value(); });
     };
+    std::unordered_map<std::string_view, const track*> actual_by_name;
+    for (const track& a : actual.tracks) actual_by_name.emplace(a.name, &a);
     for (const track& e : expected.tracks) {
-        const auto a = std::find_if(actual.tracks.begin(), actual.tracks.end(), [&](const track& t) { return t.name == e.name; });
-        if (a != actual.tracks.end() && a->key_fps != e.key_fps && has_frames(e) && has_frames(*a)) {
+        const auto named = actual_by_name.find(e.name);
+        const track* a = named == actual_by_name.end() ? nullptr : named->second;
+        if (a && a->key_fps != e.key_fps && has_frames(e) && has_frames(*a)) {
             print_error(err, fmt::format("{} counts frames at {} fps, {} at {} fps: rows are matched by time",
                                          expected.source, e.key_fps, actual.source, a->key_fps));
             break;
         }
     }
     // A track missing from either file is said once, not row by row.
-    for (const std::string& name : c.missing_tracks)
-        print_error(err, fmt::format("{}: track '{}' missing from ACTUAL", actual.source, name));
-    for (const std::string& name : c.extra_tracks)
-        print_error(err, fmt::format("{}: track '{}' only in ACTUAL", actual.source, name));
-    const auto whole_track = [&](const row_difference& r) {
-        return std::find(c.missing_tracks.begin(), c.missing_tracks.end(), r.track) != c.missing_tracks.end() ||
-               std::find(c.extra_tracks.begin(), c.extra_tracks.end(), r.track) != c.extra_tracks.end();
-    };
     constexpr std::size_t max_reasons = 10;
+    std::unordered_set<std::string_view> whole_tracks;
+    for (const auto& [names, where] :
+         {std::pair(&c.missing_tracks, "missing from ACTUAL"), std::pair(&c.extra_tracks, "only in ACTUAL")}) {
+        for (const std::string& name : *names) {
+            if (whole_tracks.size() < max_reasons)
+                print_error(err, fmt::format("{}: track '{}' {}", actual.source, name, where));
+            whole_tracks.insert(name);
+        }
+    }
+    if (whole_tracks.size() > max_reasons)
+        print_error(err, fmt::format("{}: {} more tracks missing from one file", actual.source, whole_tracks.size() - max_reasons));
     std::size_t told = 0;
     for (const row_difference& r : c.rows) {
-        if (r.pass() || whole_track(r)) continue;
+        if (r.pass() || whole_tracks.contains(r.track)) continue;
         if (told++ < max_reasons) print_error(err, actual.source + ": " + row_place(r) + ": " + r.problem);
     }
     if (told > max_reasons) print_error(err, fmt::format("{}: {} more rows failed", actual.source, told - max_reasons));
