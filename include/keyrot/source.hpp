@@ -30,7 +30,6 @@ public:
 
     struct spool;  // how an input that can be read only once is read again
 
-    const std::string& name() const noexcept { return name_; }      ///< as given
     const std::string& source() const noexcept { return source_; }  ///< for messages: the path or "<stdin>"
     /// A fresh stream from the start (each has its own position).
     std::unique_ptr<std::istream> open() const;
