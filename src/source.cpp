@@ -158,15 +158,20 @@ input_source::input_source(const std::string& name, std::istream& stdin_stream)
         // A pipe, a FIFO, process substitution, /dev/stdin, a device, or a
         // file whose size says nothing (/proc's): read once, as standard
         // input is.
+        try {
+            if (S_ISDIR(st.st_mode)) throw error(fmt::format("cannot read '{}': it is a directory", name));
+            spool_ = make_spool(fmt::format("'{}'", name), [fd, name](char* buffer, std::size_t size) {
+                ssize_t got;
+                do got = ::read(fd, buffer, size);
+                while (got < 0 && errno == EINTR);
+                if (got < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
+                return static_cast<std::size_t>(got);
+            });
+        } catch (...) {
+            ::close(fd);  // (the destructor does not run for a constructor that throws)
+            throw;
+        }
         input_fd_ = fd;
-        if (S_ISDIR(st.st_mode)) throw error(fmt::format("cannot read '{}': it is a directory", name));
-        spool_ = make_spool(fmt::format("'{}'", name), [fd, name](char* buffer, std::size_t size) {
-            ssize_t got;
-            do got = ::read(fd, buffer, size);
-            while (got < 0 && errno == EINTR);
-            if (got < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
-            return static_cast<std::size_t>(got);
-        });
         fd_ = spool_->fd;
         return;
     }
