@@ -142,14 +142,15 @@ output_file::output_file(std::string path) : path_(std::move(path)) {
         return;
     }
     const auto existing = status_of(path_);
+    // Through a symbolic link (or /dev/stdout redirected to a file), the
+    // file it names is replaced and the link kept; another user's link is
+    // refused, whatever it names (a device too).
+    target_ = resolve(path_);
     if (!is_replaced(path_, existing)) {  // a device or a pipe: nothing to replace
         fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
         if (fd_ < 0) fail(errno);
         return;
     }
-    // Through a symbolic link (or /dev/stdout redirected to a file), the
-    // file it names is replaced and the link kept.
-    target_ = resolve(path_);
     if (existing) {
         // As `>` and cp do: no replacing a file one may not write (0444),
         // and no passing its set-user-ID or set-group-ID bit on.

@@ -46,6 +46,9 @@ if [[ $(id -u) == 0 ]] && { id "$other" >/dev/null 2>&1 || useradd -M -s /usr/sb
         "$keyrot" resample walk.csv --output-dir shared
     expect_error "-o: another user's link" "keyrot: cannot write 'shared/result.csv': 'shared/result.csv' is a symbolic link of another user (uid $(id -u "$other")): expected a file, or a link of yours or of the directory's owner" -- \
         "$keyrot" resample walk.csv -o shared/result.csv
+    su -s /bin/sh "$other" -c "ln -s /dev/null shared/device.csv"
+    expect_error "-o: another user's link to a device" "keyrot: cannot write 'shared/device.csv': 'shared/device.csv' is a symbolic link of another user (uid $(id -u "$other")): expected a file, or a link of yours or of the directory's owner" -- \
+        "$keyrot" resample walk.csv -o shared/device.csv
     expect "the victim untouched, no temporary beside it" 0 "precious
 0" -- bash -c "cat victim.txt; ls -a | grep -c keyrot- || true"
     mkdir -m 777 open && cp walk.csv open/readonly.csv && chmod 444 open/readonly.csv && chown "$other" open
