@@ -85,6 +85,11 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
         const track* a = named == by_name.end() ? nullptr : named->second;
         if (!a) out.missing_tracks.push_back(e.name);
         // Frame numbers at different rates are different times: matched by time.
+        const auto has_frames = [](const track& t) {
+            return std::any_of(t.keys.begin(), t.keys.end(), [](const key& k) { return k.frame.has_value(); });
+        };
+        if (a && a->key_fps != e.key_fps && !out.frame_rates && has_frames(e) && has_frames(*a))
+            out.frame_rates = std::pair(e.key_fps, a->key_fps);
         const std::optional<key_finder> finder =
             a ? std::optional<key_finder>(std::in_place, *a, a->key_fps == e.key_fps) : std::nullopt;
         for (const key& k : e.keys) {

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <ostream>
 #include <string_view>
-#include <unordered_map>
 #include <unordered_set>
 
 #include "commands.hpp"
@@ -156,21 +155,9 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
     const tolerances tol{o.tol_deg, o.tol_translation};
     const comparison c = compare_tracks(expected.tracks, actual.tracks, tol);
 
-    // Frame numbers at two rates are matched by time: said once.
-    const auto has_frames = [](const track& t) {
-        return std::any_of(t.keys.begin(), t.keys.end(), [](const key& k) { return k.frame.has_value(); });
-    };
-    std::unordered_map<std::string_view, const track*> actual_by_name;
-    for (const track& a : actual.tracks) actual_by_name.emplace(a.name, &a);
-    for (const track& e : expected.tracks) {
-        const auto named = actual_by_name.find(e.name);
-        const track* a = named == actual_by_name.end() ? nullptr : named->second;
-        if (a && a->key_fps != e.key_fps && has_frames(e) && has_frames(*a)) {
-            print_error(err, fmt::format("{} counts frames at {} fps, {} at {} fps: rows are matched by time",
-                                         expected.source, e.key_fps, actual.source, a->key_fps));
-            break;
-        }
-    }
+    if (c.frame_rates)
+        print_error(err, fmt::format("{} counts frames at {} fps, {} at {} fps: rows are matched by time",
+                                     expected.source, c.frame_rates->first, actual.source, c.frame_rates->second));
     // A track missing from either file is said once, not row by row.
     constexpr std::size_t max_reasons = 10;
     std::unordered_set<std::string_view> whole_tracks;

@@ -2,6 +2,7 @@
 // Grading: match two sets of tracks row by row and measure the differences.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "keyrot/track.hpp"
@@ -30,6 +31,9 @@ struct comparison {
     std::optional<std::size_t> worst;  ///< index of the largest angle among matched rows
     std::vector<std::string> missing_tracks;  ///< EXPECTED's tracks that ACTUAL has not (their rows are missing)
     std::vector<std::string> extra_tracks;    ///< ACTUAL's tracks that EXPECTED has not
+    /// The first pair of tracks whose frames count at two rates (EXPECTED's,
+    /// ACTUAL's), whose rows were therefore matched by time.
+    std::optional<std::pair<double, double>> frame_rates;
 };
 
 /// Rows are matched by track name and frame when both keys have a frame and
