@@ -1,4 +1,4 @@
-#include "keyrot/cli.hpp"
+#include "cli.hpp"
 
 #include <fmt/format.h>
 
@@ -25,15 +25,18 @@ struct raw_flags {
     std::string expected, actual;  // compare's files
 };
 
-template <std::size_t N>
-std::vector<std::string> names(const std::array<std::string_view, N>& list) {
-    return {list.begin(), list.end()};
+/// An enumeration's names, for CLI::IsMember.
+template <named_enum E>
+std::vector<std::string> names() {
+    std::vector<std::string> list;
+    for (const auto& n : names_of<E>) list.emplace_back(n.name);
+    return list;
 }
 
 /// Flags for reading keys (every command but slerp).
 void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--from", f.from, "input format (default: by extension, else sniffed)")
-        ->check(CLI::IsMember(names(format_names)));
+        ->check(CLI::IsMember(names<format>()));
     sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
     sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
     sub.add_option("--max-bytes", o.max_bytes, "most bytes a CSV or NDJSON line, or a JSON document read whole, may "
@@ -45,7 +48,7 @@ void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
 void add_convention_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--euler", f.euler, "Euler sequence of the input, e.g. ZYX (intrinsic) or xyz (extrinsic)");
     sub.add_option("--quat-order", f.quat_order, "order of quaternion arrays and output columns")
-        ->check(CLI::IsMember({"wxyz", "xyzw"}));
+        ->check(CLI::IsMember(names<quat_order>()));
     sub.add_flag("--radians", o.radians, "angles in radians, input and output (default: degrees)");
 }
 
@@ -53,8 +56,8 @@ void add_convention_flags(CLI::App& sub, options& o, raw_flags& f) {
 void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("-o,--output", o.output, "output file (default: standard output)");
     sub.add_option("--to", f.to, "output format (default: extension of -o, else the input format)")
-        ->check(CLI::IsMember(names(format_names)));
-    sub.add_option("--rep", f.rep, "output representation")->check(CLI::IsMember(names(rep_names)));
+        ->check(CLI::IsMember(names<format>()));
+    sub.add_option("--rep", f.rep, "output representation")->check(CLI::IsMember(names<rep>()));
     add_convention_flags(sub, o, f);
     sub.add_option("--out-euler", f.out_euler, "Euler sequence of the output (default: --euler)");
     auto* deg = sub.add_flag("--out-degrees", f.out_degrees, "output angles in degrees");
@@ -64,9 +67,9 @@ void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
 }
 
 void add_method_flags(CLI::App& sub, raw_flags& f) {
-    sub.add_option("--method", f.method, "interpolation method")->check(CLI::IsMember(names(method_names)));
+    sub.add_option("--method", f.method, "interpolation method")->check(CLI::IsMember(names<method>()));
     sub.add_option("--path", f.path, "shortest: consecutive keys in one hemisphere; direct: signs as given")
-        ->check(CLI::IsMember(names(path_names)));
+        ->check(CLI::IsMember(names<path>()));
 }
 
 euler_seq euler_flag(const std::string& flag, const std::string& value) {
@@ -83,12 +86,12 @@ void check_rate(const char* flag, double v) {
 
 /// Turns the raw flag values into typed options, checking what CLI11 cannot.
 void finish(options& o, const raw_flags& f) {
-    if (!f.from.empty()) o.from = parse_format(f.from);
-    if (!f.to.empty()) o.to = parse_format(f.to);
-    o.representation = *parse_rep(f.rep);
+    if (!f.from.empty()) o.from = parse<format>(f.from);
+    if (!f.to.empty()) o.to = parse<format>(f.to);
+    o.representation = *parse<rep>(f.rep);
     if (!f.euler.empty()) o.euler = euler_flag("--euler", f.euler);
     if (!f.out_euler.empty()) o.out_euler = euler_flag("--out-euler", f.out_euler);
-    o.order = *parse_quat_order(f.quat_order);
+    o.order = *parse<quat_order>(f.quat_order);
     if (f.out_degrees) o.out_angles = angle_unit::degrees;
     if (f.out_radians) o.out_angles = angle_unit::radians;
     if (f.precision) {
@@ -96,10 +99,10 @@ void finish(options& o, const raw_flags& f) {
             throw usage_error(fmt::format("--precision: expected 0 to 17 digits, got {}", *f.precision));
         o.precision = f.precision;
     }
-    o.from_rep = *parse_rep(f.from_rep);
+    o.from_rep = *parse<rep>(f.from_rep);
     o.report_json = f.report == "json";
-    o.how = *parse_method(f.method);
-    o.way = *parse_path(f.path);
+    o.how = *parse<method>(f.method);
+    o.way = *parse<path>(f.path);
     check_rate("--fps", o.fps);
     if (o.max_bytes < 1) throw usage_error("--max-bytes: expected at least 1 byte, got 0");
     if (!(std::isfinite(o.max_frames) && o.max_frames >= 1))

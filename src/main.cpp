@@ -10,9 +10,9 @@
 #include <sstream>
 
 #include "keyrot/app.hpp"
-#include "keyrot/cli.hpp"
+#include "cli.hpp"
 #include "keyrot/error.hpp"
-#include "keyrot/output.hpp"
+#include "io/output.hpp"
 
 namespace {
 

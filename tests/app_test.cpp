@@ -10,7 +10,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "keyrot/cli.hpp"
+#include "cli.hpp"
 
 using namespace keyrot;
 namespace fs = std::filesystem;

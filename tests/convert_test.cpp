@@ -48,10 +48,16 @@ euler_seq seq(const char* name) { return *parse_euler_seq(name); }
 }  // namespace
 
 TEST_CASE("names of representations, units and sequences") {
-    for (auto name : rep_names) CHECK(to_string(*parse_rep(name)) == name);
-    CHECK_FALSE(parse_rep("quaternion"));
-    CHECK(parse_angle_unit("radians") == angle_unit::radians);
-    CHECK_FALSE(parse_angle_unit("deg"));
+    for (const auto& [value, name] : names_of<rep>) {
+        CHECK(parse<rep>(name) == value);
+        CHECK(to_string(value) == name);
+    }
+    CHECK(parse<rep>("axis-angle") == rep::axis_angle);  // the spec's names, written out
+    CHECK(to_string(rep::matrix4) == "matrix4");
+    CHECK(to_string(quat_order::xyzw) == "xyzw");
+    CHECK_FALSE(parse<rep>("quaternion"));
+    CHECK(parse<angle_unit>("radians") == angle_unit::radians);
+    CHECK_FALSE(parse<angle_unit>("deg"));
     CHECK(seq("ZYX").intrinsic);
     CHECK_FALSE(seq("zyx").intrinsic);
     CHECK(seq("zyx").axes == std::array<int, 3>{2, 1, 0});

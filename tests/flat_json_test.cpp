@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "json_same.hpp"
-#include "keyrot/flat_json.hpp"
+#include "fast/flat_json.hpp"
 
 using keyrot::flat_json;
 using keyrot::test::same_json;

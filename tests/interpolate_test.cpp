@@ -50,10 +50,12 @@ track make_track_of(const std::vector<quat>& qs, double spacing = 1) {
 }  // namespace
 
 TEST_CASE("method and path names") {
-    for (auto name : method_names) CHECK(to_string(*parse_method(name)) == name);
-    for (auto name : path_names) CHECK(to_string(*parse_path(name)) == name);
-    CHECK_FALSE(parse_method("linear"));
-    CHECK_FALSE(parse_path("long"));
+    for (const auto& [value, name] : names_of<method>) CHECK(parse<method>(name) == value);
+    for (const auto& [value, name] : names_of<path>) CHECK(to_string(value) == name);
+    CHECK(parse<method>("squad") == method::squad);
+    CHECK(to_string(path::direct) == "direct");
+    CHECK_FALSE(parse<method>("linear"));
+    CHECK_FALSE(parse<path>("long"));
 }
 
 TEST_CASE("seed 000 worked example: halfway from identity to 90 degrees about z") {

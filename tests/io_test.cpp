@@ -1,5 +1,5 @@
 // Readers and writers of CSV, JSON and NDJSON.
-#include "keyrot/io.hpp"
+#include "io/io.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "helpers.hpp"
-#include "keyrot/flat_json.hpp"
+#include "fast/flat_json.hpp"
 
 using namespace keyrot;
 
@@ -808,12 +808,12 @@ TEST_CASE("keyrot reads what it writes, in every format and representation") {
     info.translation = true;
     info.fps = 24;
     for (format f : {format::csv, format::json, format::ndjson}) {
-        for (auto name : rep_names) {
+        for (const auto& named : names_of<rep>) {
             write_options w;
-            w.representation = *parse_rep(name);
+            w.representation = named.value;
             w.euler = parse_euler_seq("yxz");
             CAPTURE(to_string(f));
-            CAPTURE(name);
+            CAPTURE(named.name);
             const std::string text = write(f, info, w, rows);
             std::ostringstream err;
             warnings warn(err, "in");

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "keyrot/flat_json.hpp"
+#include "fast/flat_json.hpp"
 
 namespace keyrot::test {
 

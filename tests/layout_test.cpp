@@ -1,4 +1,4 @@
-#include "keyrot/layout.hpp"
+#include "io/layout.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

@@ -7,9 +7,8 @@
 #include <vector>
 
 #include "keyrot/convert.hpp"
+#include "keyrot/format.hpp"
 #include "keyrot/interpolate.hpp"
-#include "keyrot/io.hpp"
-#include "keyrot/layout.hpp"
 #include "keyrot/resample.hpp"
 
 namespace keyrot {

@@ -6,23 +6,31 @@
 #include <string>
 #include <string_view>
 
+#include "keyrot/names.hpp"
 #include "keyrot/quat.hpp"
 
 namespace keyrot {
 
 /// The rotation representations of the spec, as named on the command line.
 enum class rep { quat, axis_angle, rotvec, euler, matrix, matrix4 };
+template <>
+inline constexpr std::array<enum_name<rep>, 6> names_of<rep> = {{{rep::axis_angle, "axis-angle"},
+                                                             {rep::quat, "quat"},
+                                                             {rep::rotvec, "rotvec"},
+                                                             {rep::euler, "euler"},
+                                                             {rep::matrix, "matrix"},
+                                                             {rep::matrix4, "matrix4"}}};
 
-/// "axis-angle" -> rep::axis_angle; std::nullopt for an unknown name.
-std::optional<rep> parse_rep(std::string_view name);
-std::string_view to_string(rep r) noexcept;
-/// All names parse_rep accepts, for help texts and errors.
-inline constexpr std::array<std::string_view, 6> rep_names = {
-    "axis-angle", "quat", "rotvec", "euler", "matrix", "matrix4"};
+/// The order of a quaternion's four numbers in a file.
+enum class quat_order { wxyz, xyzw };
+template <>
+inline constexpr std::array<enum_name<quat_order>, 2> names_of<quat_order> = {
+    {{quat_order::wxyz, "wxyz"}, {quat_order::xyzw, "xyzw"}}};
 
 enum class angle_unit { degrees, radians };
-std::optional<angle_unit> parse_angle_unit(std::string_view name);
-std::string_view to_string(angle_unit u) noexcept;
+template <>
+inline constexpr std::array<enum_name<angle_unit>, 2> names_of<angle_unit> = {
+    {{angle_unit::degrees, "degrees"}, {angle_unit::radians, "radians"}}};
 /// Unit conversions, rounded once (to within half an ulp).
 double to_radians(double angle, angle_unit from) noexcept;
 double from_radians(double radians, angle_unit to) noexcept;

@@ -4,13 +4,18 @@
 #include <optional>
 #include <string_view>
 
+#include "keyrot/names.hpp"
+
 namespace keyrot {
 
 enum class format { csv, json, ndjson };
-inline constexpr std::array<std::string_view, 3> format_names = {"csv", "json", "ndjson"};
-/// "csv" -> format::csv; std::nullopt for a name not in format_names.
-std::optional<format> parse_format(std::string_view name);
-std::string_view to_string(format f) noexcept;
+template <>
+inline constexpr std::array<enum_name<format>, 3> names_of<format> = {
+    {{format::csv, "csv"}, {format::json, "json"}, {format::ndjson, "ndjson"}}};
+/// Most bytes a CSV or NDJSON line, or a JSON document read whole, may take
+/// (--max-bytes): endless input (/dev/zero) ends in an error, not in all memory.
+inline constexpr std::size_t default_max_bytes = std::size_t{256} << 20;
+
 /// ".csv" -> csv, ".json" -> json, ".ndjson" / ".jsonl" -> ndjson.
 std::optional<format> format_of_path(std::string_view path);
 /// Guess from the start of the content: '{' or '[' first means JSON, unless

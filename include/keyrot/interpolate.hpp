@@ -13,14 +13,16 @@
 namespace keyrot {
 
 enum class method { slerp, nlerp, squad, step, euler };
-enum class path { shortest, direct };
+template <>
+inline constexpr std::array<enum_name<method>, 5> names_of<method> = {{{method::slerp, "slerp"},
+                                                                   {method::nlerp, "nlerp"},
+                                                                   {method::squad, "squad"},
+                                                                   {method::step, "step"},
+                                                                   {method::euler, "euler"}}};
 
-inline constexpr std::array<std::string_view, 5> method_names = {"slerp", "nlerp", "squad", "step", "euler"};
-inline constexpr std::array<std::string_view, 2> path_names = {"shortest", "direct"};
-std::optional<method> parse_method(std::string_view name);
-std::string_view to_string(method m) noexcept;
-std::optional<path> parse_path(std::string_view name);
-std::string_view to_string(path p) noexcept;
+enum class path { shortest, direct };
+template <>
+inline constexpr std::array<enum_name<path>, 2> names_of<path> = {{{path::shortest, "shortest"}, {path::direct, "direct"}}};
 /// Throws usage_error for method::euler without an Euler sequence.
 void check_method(method m, const std::optional<euler_seq>& seq);
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "keyrot/layout.hpp"
+#include "io/layout.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot::fuzz {

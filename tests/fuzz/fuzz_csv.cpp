@@ -13,7 +13,7 @@
 #include <string_view>
 
 #include "check.hpp"
-#include "keyrot/io.hpp"
+#include "io/io.hpp"
 
 namespace {
 

@@ -11,8 +11,8 @@
 
 #include "../json_same.hpp"
 #include "check.hpp"
-#include "keyrot/flat_json.hpp"
-#include "keyrot/io.hpp"
+#include "fast/flat_json.hpp"
+#include "io/io.hpp"
 
 namespace {
 

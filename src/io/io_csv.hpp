@@ -4,7 +4,7 @@
 #include <memory>
 #include <string>
 
-#include "keyrot/io.hpp"
+#include "io/io.hpp"
 
 namespace keyrot {
 

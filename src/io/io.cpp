@@ -1,12 +1,12 @@
-#include "keyrot/io.hpp"
+#include "io/io.hpp"
 
 #include <fmt/format.h>
 
 #include <map>
 #include <sstream>
 
-#include "keyrot/io_csv.hpp"
-#include "keyrot/io_json.hpp"
+#include "io/io_csv.hpp"
+#include "io/io_json.hpp"
 
 namespace keyrot {
 

@@ -6,11 +6,11 @@
 #include <string_view>
 #include <unordered_set>
 
-#include "commands.hpp"
+#include "app/commands.hpp"
 #include "keyrot/compare.hpp"
 #include "keyrot/describe.hpp"
-#include "keyrot/layout.hpp"
-#include "row_pipeline.hpp"
+#include "io/layout.hpp"
+#include "fast/row_pipeline.hpp"
 
 namespace keyrot::detail {
 

@@ -1,4 +1,4 @@
-#include "keyrot/io_json.hpp"
+#include "io/io_json.hpp"
 
 #include <fmt/format.h>
 
@@ -11,8 +11,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "keyrot/flat_json.hpp"
-#include "json_keys.hpp"
+#include "fast/flat_json.hpp"
+#include "io/json_keys.hpp"
 
 namespace keyrot {
 namespace {
@@ -122,7 +122,7 @@ std::string place_of(std::string_view text, std::size_t byte, std::string_view s
     return fmt::format("{}:{}:{}", source, first_line + line_of(text, byte) - 1, byte - line_start + 1);
 }
 
-json parse(std::string_view text, std::string_view source, std::size_t first_line) {
+json parse_dom(std::string_view text, std::string_view source, std::size_t first_line) {
     check_depth(text, source, first_line);
     try {
         return json::parse(text.begin(), text.end(), unique_names(source));
@@ -222,7 +222,7 @@ bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, w
             // now, from the first block, rather than after reading all there is.
             const std::string_view start = without_bom(std::string_view(chunk.data(), static_cast<std::size_t>(got)));
             const auto first = start.find_first_not_of(" \t\r\n");
-            if (first != std::string_view::npos && start[first] != '{' && start[first] != '[') parse(start, opts.source, 1);
+            if (first != std::string_view::npos && start[first] != '{' && start[first] != '[') parse_dom(start, opts.source, 1);
         }
         if (text.size() + static_cast<std::size_t>(got) > opts.max_bytes)
             throw input_error(opts.source, fmt::format("JSON document longer than {} bytes (--max-bytes N raises the limit)",
@@ -231,7 +231,7 @@ bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, w
     }
     flat_json flat;
     if (flat.parse(text)) return read_json_value(flat.root(), opts, sink, warn);
-    return read_json_value(dom_value(parse(text, opts.source, 1)), opts, sink, warn);
+    return read_json_value(dom_value(parse_dom(text, opts.source, 1)), opts, sink, warn);
 }
 
 raw_document read_json(std::istream& in, const read_options& opts, warnings& warn) {
@@ -269,7 +269,7 @@ public:
         // The same header again is two of keyrot's outputs one after the other (cat a.ndjson b.ndjson).
         if (trim(line).empty() || (!header_.empty() && trim(line) == header_)) return false;
         if (fast_.parse(line)) read(fast_.root(), line_no, track, k);
-        else read(dom_value(keyrot::parse(line, source_, line_no)), line_no, track, k);
+        else read(dom_value(parse_dom(line, source_, line_no)), line_no, track, k);
         return true;
     }
 
@@ -325,7 +325,7 @@ public:
         const std::string where = fmt::format("{}:{}", opts.source, lines_.number());
         quat_order order = opts.order;
         if (parsed) apply_fields(fast.root(), settings_, order, where, settings_object::header, opts, warn);
-        else apply_fields(dom_value(keyrot::parse(line, opts.source, lines_.number())), settings_, order, where,
+        else apply_fields(dom_value(parse_dom(line, opts.source, lines_.number())), settings_, order, where,
                           settings_object::header, opts, warn);
         keys_ = ndjson_lines(opts.source, order, std::string(trim(line)));
     }

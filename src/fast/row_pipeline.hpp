@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "keyrot/error.hpp"
-#include "keyrot/io.hpp"
-#include "keyrot/output.hpp"
-#include "thread_start.hpp"
+#include "io/io.hpp"
+#include "io/output.hpp"
+#include "fast/thread_start.hpp"
 
 namespace keyrot::detail {
 

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <initializer_list>
 
-#include "fma_clones.hpp"
+#include "core/fma_clones.hpp"
 
 namespace keyrot {
 

@@ -1,4 +1,4 @@
-#include "keyrot/io_csv.hpp"
+#include "io/io_csv.hpp"
 
 #include <fmt/format.h>
 
@@ -11,8 +11,8 @@
 #include <optional>
 #include <utility>
 
-#include "json_keys.hpp"
-#include "keyrot/flat_json.hpp"
+#include "io/json_keys.hpp"
+#include "fast/flat_json.hpp"
 
 namespace keyrot {
 namespace {

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "keyrot/app.hpp"
-#include "keyrot/io.hpp"
+#include "io/io.hpp"
 #include "keyrot/resample.hpp"
-#include "keyrot/source.hpp"
+#include "io/source.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot::detail {

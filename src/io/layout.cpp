@@ -1,4 +1,4 @@
-#include "keyrot/layout.hpp"
+#include "io/layout.hpp"
 
 #include <fmt/format.h>
 
@@ -32,14 +32,6 @@ constexpr std::array<std::string_view, 9> matrix_cols = {"m00", "m01", "m02", "m
                                                          "m12", "m20", "m21", "m22"};
 
 }  // namespace
-
-std::optional<quat_order> parse_quat_order(std::string_view name) {
-    if (name == "wxyz") return quat_order::wxyz;
-    if (name == "xyzw") return quat_order::xyzw;
-    return std::nullopt;
-}
-
-std::string_view to_string(quat_order o) noexcept { return o == quat_order::wxyz ? "wxyz" : "xyzw"; }
 
 std::span<const std::string_view> rotation_columns(rep r, quat_order order) noexcept {
     switch (r) {

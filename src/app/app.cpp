@@ -5,9 +5,9 @@
 #include <optional>
 #include <ostream>
 
-#include "commands.hpp"
-#include "keyrot/io_json.hpp"
-#include "keyrot/output.hpp"
+#include "app/commands.hpp"
+#include "io/io_json.hpp"
+#include "io/output.hpp"
 
 namespace keyrot {
 namespace detail {

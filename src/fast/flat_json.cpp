@@ -1,4 +1,4 @@
-#include "keyrot/flat_json.hpp"
+#include "fast/flat_json.hpp"
 
 #include <charconv>
 #include <cmath>

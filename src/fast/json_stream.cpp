@@ -17,9 +17,9 @@
 #include <string_view>
 #include <vector>
 
-#include "json_keys.hpp"
-#include "keyrot/flat_json.hpp"
-#include "keyrot/io_json.hpp"
+#include "io/json_keys.hpp"
+#include "fast/flat_json.hpp"
+#include "io/io_json.hpp"
 
 namespace keyrot {
 namespace {

@@ -3,26 +3,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "fma_clones.hpp"
+#include "core/fma_clones.hpp"
 #include "keyrot/tolerances.hpp"
 
 namespace keyrot {
-
-std::optional<method> parse_method(std::string_view name) {
-    for (std::size_t i = 0; i < method_names.size(); ++i)
-        if (method_names[i] == name) return static_cast<method>(i);
-    return std::nullopt;
-}
-
-std::string_view to_string(method m) noexcept { return method_names[static_cast<std::size_t>(m)]; }
-
-std::optional<path> parse_path(std::string_view name) {
-    for (std::size_t i = 0; i < path_names.size(); ++i)
-        if (path_names[i] == name) return static_cast<path>(i);
-    return std::nullopt;
-}
-
-std::string_view to_string(path p) noexcept { return path_names[static_cast<std::size_t>(p)]; }
 
 slerp_segment::slerp_segment(quat a, quat b) noexcept : a_(a), b_(b) {
     // Szeliski's form (seed 004): b = a r; turn a by the fraction h of r.

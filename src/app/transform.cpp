@@ -17,10 +17,10 @@
 #include <thread>
 #include <utility>
 
-#include "commands.hpp"
-#include "keyrot/output.hpp"
-#include "row_pipeline.hpp"
-#include "thread_start.hpp"
+#include "app/commands.hpp"
+#include "io/output.hpp"
+#include "fast/row_pipeline.hpp"
+#include "fast/thread_start.hpp"
 
 namespace keyrot::detail {
 namespace {

@@ -14,13 +14,9 @@
 
 #include "keyrot/convert.hpp"
 #include "keyrot/quat.hpp"
-#include "keyrot/text.hpp"
+#include "ground/text.hpp"
 
 namespace keyrot {
-
-enum class quat_order { wxyz, xyzw };
-std::optional<quat_order> parse_quat_order(std::string_view name);
-std::string_view to_string(quat_order o) noexcept;
 
 /// CSV columns of a representation's rotation, in output order:
 /// rotation_columns(rep::axis_angle, ...) = {"ax", "ay", "az", "angle"}.

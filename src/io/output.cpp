@@ -1,4 +1,4 @@
-#include "keyrot/output.hpp"
+#include "io/output.hpp"
 
 #include <fmt/format.h>
 #include <fcntl.h>

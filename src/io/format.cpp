@@ -2,24 +2,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include "keyrot/text.hpp"
+#include "ground/text.hpp"
 
 namespace keyrot {
-
-std::optional<format> parse_format(std::string_view name) {
-    for (std::size_t i = 0; i < format_names.size(); ++i)
-        if (name == format_names[i]) return static_cast<format>(i);
-    return std::nullopt;
-}
-
-std::string_view to_string(format f) noexcept { return format_names[static_cast<std::size_t>(f)]; }
 
 std::optional<format> format_of_path(std::string_view path) {
     const auto dot = path.rfind('.');
     if (dot == std::string_view::npos || path.find('/', dot) != std::string_view::npos) return std::nullopt;
     const std::string ext = ascii_lower(path.substr(dot + 1));
     if (ext == "jsonl") return format::ndjson;
-    return parse_format(ext);
+    return parse<format>(ext);
 }
 
 format sniff_format(std::string_view text) {

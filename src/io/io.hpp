@@ -11,12 +11,10 @@
 
 #include "keyrot/format.hpp"
 #include "keyrot/frame.hpp"
-#include "keyrot/layout.hpp"
+#include "io/layout.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {
-
-inline constexpr std::size_t default_max_bytes = std::size_t{256} << 20;
 
 /// Everything a reader needs besides the text.
 struct read_options {

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "keyrot/text.hpp"
+#include "ground/text.hpp"
 
 namespace keyrot {
 

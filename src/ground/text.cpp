@@ -1,4 +1,4 @@
-#include "keyrot/text.hpp"
+#include "ground/text.hpp"
 
 #include <cstdint>
 #include <cstdlib>

@@ -3,40 +3,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "fma_clones.hpp"
+#include "core/fma_clones.hpp"
 #include "keyrot/tolerances.hpp"
 
 namespace keyrot {
-
-std::optional<rep> parse_rep(std::string_view name) {
-    static constexpr std::array<rep, 6> values = {rep::axis_angle, rep::quat,   rep::rotvec,
-                                                  rep::euler,      rep::matrix, rep::matrix4};
-    for (std::size_t i = 0; i < rep_names.size(); ++i)
-        if (rep_names[i] == name) return values[i];
-    return std::nullopt;
-}
-
-std::string_view to_string(rep r) noexcept {
-    switch (r) {
-        case rep::quat: return "quat";
-        case rep::axis_angle: return "axis-angle";
-        case rep::rotvec: return "rotvec";
-        case rep::euler: return "euler";
-        case rep::matrix: return "matrix";
-        case rep::matrix4: return "matrix4";
-    }
-    return "?";
-}
-
-std::optional<angle_unit> parse_angle_unit(std::string_view name) {
-    if (name == "degrees") return angle_unit::degrees;
-    if (name == "radians") return angle_unit::radians;
-    return std::nullopt;
-}
-
-std::string_view to_string(angle_unit u) noexcept {
-    return u == angle_unit::degrees ? "degrees" : "radians";
-}
 
 namespace {
 

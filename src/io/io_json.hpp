@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "keyrot/io.hpp"
+#include "io/io.hpp"
 
 namespace keyrot {
 

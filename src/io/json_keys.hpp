@@ -13,8 +13,8 @@
 #include <string_view>
 
 #include "keyrot/error.hpp"
-#include "keyrot/io.hpp"
-#include "keyrot/layout.hpp"
+#include "io/io.hpp"
+#include "io/layout.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot::detail {
@@ -192,7 +192,7 @@ void apply_fields(Value obj, key_settings& s, quat_order& order, const std::stri
         if (given) warn.once(fmt::format("conflict {}", field), fmt::format("the file's '{}' is used, not {}", field, flag));
     };
     if (auto a = text("angles")) {
-        const auto u = parse_angle_unit(*a);
+        const auto u = parse<angle_unit>(*a);
         if (!u) throw input_error(where, fmt::format("'angles': expected \"degrees\" or \"radians\", got \"{}\"", excerpt(*a)));
         if (*u != opts.settings.angles) conflict("angles", opts.given.angles, "--radians");
         s.angles = *u;
@@ -206,7 +206,7 @@ void apply_fields(Value obj, key_settings& s, quat_order& order, const std::stri
         s.euler = seq;
     }
     if (auto o = text("quat_order")) {
-        const auto q = parse_quat_order(*o);
+        const auto q = parse<quat_order>(*o);
         if (!q) throw input_error(where, fmt::format("'quat_order': expected \"wxyz\" or \"xyzw\", got \"{}\"", excerpt(*o)));
         order = *q;
     }

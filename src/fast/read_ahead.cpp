@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "keyrot/io.hpp"
-#include "thread_start.hpp"
+#include "io/io.hpp"
+#include "fast/thread_start.hpp"
 
 namespace keyrot {
 namespace {
