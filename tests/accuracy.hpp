@@ -186,11 +186,18 @@ inline std::vector<measurement> measurements() {
                      std::array<quat, 4> q{s.rotation()};
                      for (std::size_t i = 1; i < 4; ++i) q[i] = q[i - 1] * from_axis_angle(s.axis(), theta * s.uniform(0.5, 1));
                      const double h = s.uniform(0, 1);
-                     const quat s1 = squad_control(q[0], q[1], q[2]), s2 = squad_control(q[1], q[2], q[3]);
+                     // The curve resample evaluates: keys 0..3 one second apart, signs as given.
+                     track t;
+                     for (std::size_t i = 0; i < 4; ++i) {
+                         t.keys.emplace_back();
+                         t.keys.back().time = static_cast<double>(i);
+                         t.keys.back().rotation = q[i];
+                     }
+                     const rotation_curve curve(t, method::squad, path::direct);
                      const ref::q128 r1 = ref::squad_control(widen(q[0]), widen(q[1]), widen(q[2]));
                      const ref::q128 r2 = ref::squad_control(widen(q[1]), widen(q[2]), widen(q[3]));
                      const ref::q128 want = ref::slerp(ref::slerp(widen(q[1]), widen(q[2]), h), ref::slerp(r1, r2, h), 2 * h * (1 - h));
-                     return rot(squad(q[1], q[2], s1, s2, h), want);
+                     return rot(curve.at(1, h), want);
                  }});
     return m;
 }

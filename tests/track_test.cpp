@@ -13,6 +13,17 @@ using keyrot::test::max_diff;
 
 namespace {
 
+/// A track's header and raw keys, as a reader hands them to track_builder.
+struct given_track : raw_track {
+    std::vector<raw_key> keys;
+};
+
+track build(const given_track& t, warnings& warn) {
+    track_builder b(t.name, t.at, t.settings);
+    for (const raw_key& k : t.keys) b.add(k, warn);
+    return std::move(b).finish(warn);
+}
+
 raw_key raw(double time, rep kind, std::initializer_list<double> values) {
     raw_key k;
     k.at.line = 2;
@@ -22,11 +33,11 @@ raw_key raw(double time, rep kind, std::initializer_list<double> values) {
     return k;
 }
 
-std::string error_of(const raw_track& t) {
+std::string error_of(const given_track& t) {
     std::ostringstream err;
     warnings warn(err, "t.csv");
     try {
-        make_track(t, warn);
+        build(t, warn);
     } catch (const input_error& e) {
         return e.what();
     }
@@ -38,7 +49,7 @@ std::string error_of(const raw_track& t) {
 TEST_CASE("every input representation becomes the same unit quaternion") {
     const double s = std::sqrt(0.5);
     const quat want{s, 0, 0, s};  // 90 degrees about z
-    raw_track t;
+    given_track t;
     t.settings.euler = parse_euler_seq("ZYX");
     t.keys = {raw(0, rep::quat, {2 * s, 0, 0, 2 * s}),  // norm 2: normalised
               raw(1, rep::axis_angle, {0, 0, 3, 90}), raw(2, rep::rotvec, {0, 0, 90}),
@@ -46,7 +57,7 @@ TEST_CASE("every input representation becomes the same unit quaternion") {
               raw(5, rep::matrix4, {0, -1, 0, 7, 1, 0, 0, 8, 0, 0, 1, 9, 0, 0, 0, 1})};
     std::ostringstream err;
     warnings warn(err, "t.csv");
-    const track out = make_track(t, warn);
+    const track out = build(t, warn);
     for (const key& k : out.keys) {
         CAPTURE(k.time);
         CHECK(max_diff(k.rotation, want) <= 2e-16);
@@ -58,7 +69,7 @@ TEST_CASE("every input representation becomes the same unit quaternion") {
 }
 
 TEST_CASE("radians and frames") {
-    raw_track t;
+    given_track t;
     t.settings.angles = angle_unit::radians;
     t.settings.key_fps = 30;
     raw_key k = raw(0, rep::axis_angle, {1, 0, 0, std::numbers::pi});
@@ -67,14 +78,14 @@ TEST_CASE("radians and frames") {
     t.keys = {k};
     std::ostringstream err;
     warnings warn(err, "x");
-    const track out = make_track(t, warn);
+    const track out = build(t, warn);
     CHECK(out.keys[0].time == 0.5);
     CHECK(*out.keys[0].frame == 15);
     CHECK(std::fabs(out.keys[0].rotation.x - 1) <= 1e-16);
 }
 
 TEST_CASE("validation errors name the key and what was expected") {
-    raw_track t;
+    given_track t;
     t.keys = {raw(0, rep::quat, {0, 0, 0, 0})};
     CHECK(error_of(t) == "t.csv:2: quaternion is zero: expected a non-zero quaternion");
     t.keys = {raw(0, rep::axis_angle, {0, 0, 0, 10})};
@@ -99,19 +110,19 @@ TEST_CASE("validation errors name the key and what was expected") {
 }
 
 TEST_CASE("a frame of keyrot's output, made at any rate, is timed by its time") {
-    raw_track t;
+    given_track t;
     raw_key both = raw(0.25, rep::quat, {1, 0, 0, 0});
     both.frame = 1;  // made at 4 fps; the key rate is 24
     t.keys = {both};
     std::ostringstream err;
     warnings warn(err, "x");
-    const track out = make_track(t, warn);
+    const track out = build(t, warn);
     CHECK(out.keys[0].time == 0.25);
     CHECK(*out.keys[0].frame == 1);
 }
 
 TEST_CASE("--strict makes a non-unit quaternion an error") {
-    raw_track t;
+    given_track t;
     t.settings.strict = true;
     t.keys = {raw(0, rep::quat, {1.01, 0, 0, 0})};
     CHECK(error_of(t).find("--strict") != std::string::npos);

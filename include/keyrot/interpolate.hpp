@@ -52,23 +52,8 @@ quat slerp(quat a, quat b, double h) noexcept;
 quat nlerp(quat a, quat b, double h) noexcept;
 /// Shoemake's control point s_i = q_i exp(-(log(q_i^-1 q_next) + log(q_i^-1 q_prev)) / 4).
 quat squad_control(quat prev, quat cur, quat next) noexcept;
-/// slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)); no sign flips.
-quat squad(quat q0, quat q1, quat s0, quat s1, double h) noexcept;
 
-/// The curve between two neighbouring keys for one method, ready to evaluate.
-class segment_curve {
-public:
-    /// The rotation at local parameter h in [0, 1].
-    quat at(double h) const noexcept;
-
-private:
-    friend class segment;
-    method how_ = method::slerp;
-    quat q0_, q1_;
-    slerp_segment arc_, control_arc_;  // slerp, squad: q0 to q1; squad: s0 to s1
-    std::array<double, 3> e0_{}, e1_{};  // euler: the keys' angles
-    euler_seq seq_;
-};
+class segment_curve;
 
 /// Two neighbouring keys and what a method needs of them.
 class segment {
@@ -82,10 +67,23 @@ public:
 
 private:
     friend class segment_builder;
+    friend class segment_curve;
     method how_ = method::slerp;
     quat s0_, s1_;                       // squad: the control points
     std::array<double, 3> e0_{}, e1_{};  // euler: the keys' angles
     euler_seq seq_;
+};
+
+/// The curve between two neighbouring keys for one method, ready to evaluate.
+class segment_curve {
+public:
+    /// The rotation at local parameter h in [0, 1].
+    quat at(double h) const noexcept;
+
+private:
+    friend class segment;
+    segment keys_;
+    slerp_segment arc_, control_arc_;  // slerp, squad: q0 to q1; squad: s0 to s1
 };
 
 /// Turns a track's keys, as they arrive, into segments: the sign of each key

@@ -1,7 +1,7 @@
 #pragma once
 // Keys and tracks: what the readers produce (raw_key, as written in the file)
 // and what the rest of keyrot works on (key, with a unit quaternion).
-// make_track is the one place where raw values become rotations, so every
+// make_key is the one place where raw values become rotations, so every
 // input format is validated the same way.
 #include <array>
 #include <optional>
@@ -43,11 +43,11 @@ struct key_settings {
     bool strict = false;
 };
 
+/// What a reader knows of a track before its keys.
 struct raw_track {
     std::string name;  ///< empty for a file without tracks
     location at;  ///< the JSON track, or the CSV header, for errors
     key_settings settings;
-    std::vector<raw_key> keys;
 };
 
 struct key {
@@ -82,11 +82,13 @@ void unknown_field(std::string_view name, const std::string& where, const key_se
 /// Throws input_error unless `next` comes strictly after `previous`.
 void check_order(const key& previous, const key& next, const std::string& source);
 
-/// A whole track: make_key for each key, check_order, at least one key.
-track make_track(const raw_track& raw, warnings& warn);
-
-/// make_track one key at a time, for a reader that hands keys over as it
-/// reads them, so that their raw values need not all be held at once.
+/// A track built one key at a time (make_key, check_order, at least one
+/// key), as a reader hands keys over, so that their raw values need not all
+/// be held at once.
+///
+///     track_builder b("hip", {}, key_settings{});
+///     b.add(raw_key_at_time_0, warn);
+///     const track t = std::move(b).finish(warn);
 class track_builder {
 public:
     /// `at` and `settings` as raw_track's.

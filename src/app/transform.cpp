@@ -18,9 +18,11 @@
 #include <utility>
 
 #include "app/commands.hpp"
-#include "io/output.hpp"
+#include "app/plan.hpp"
 #include "fast/row_pipeline.hpp"
 #include "fast/thread_start.hpp"
+#include "io/document.hpp"
+#include "io/output.hpp"
 
 namespace keyrot::detail {
 namespace {
@@ -58,42 +60,9 @@ struct document_facts {
     bool translation() const {
         return std::any_of(tracks.begin(), tracks.end(), [](const track_facts& t) { return t.translation; });
     }
-
-    table_info table(const options& o) const {
-        table_info info;
-        info.named = named;
-        info.translation = translation();
-        if (o.cmd == command::resample) {
-            info.fps = o.fps;
-            info.method = to_string(o.how);
-        } else {
-            info.times = time_columns::as_given;
-            info.all_frames = all_frames;
-            info.any_time = any_time;
-            info.rows_name = frames ? "frames" : "keys";
-            if (any_frame) info.fps = tracks.front().key_fps;
-        }
-        return info;
-    }
-
-    /// resample: the frame grid of every track is within bounds. convert:
-    /// frame numbers at one rate, the one the output states.
-    void check(const options& o, const std::string& source) const {
-        if (o.cmd == command::convert && any_frame)
-            for (const auto& t : tracks)
-                if (t.key_fps != tracks.front().key_fps)
-                    throw input_error(source, fmt::format("tracks '{}' and '{}' count frames at {} and {} fps: expected "
-                                                          "one rate in a file that convert writes (resample writes times)",
-                                                          tracks.front().name, t.name, tracks.front().key_fps, t.key_fps));
-        if (o.cmd != command::resample) return;
-        for (const auto& t : tracks) {
-            check_method(o.how, t.euler);
-            check_frame_range(t.first, t.last, t.name, resampling(o), source);
-        }
-    }
 };
 
-document_facts facts_of(const input& doc) {
+document_facts facts_of(const document& doc) {
     document_facts d;
     d.named = doc.named;
     for (const track& t : doc.tracks)
@@ -101,13 +70,106 @@ document_facts facts_of(const input& doc) {
     return d;
 }
 
+sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
+
+/// What makes a track's rows from its keys, chosen once per input:
+/// resample's frame grid, or convert's keys as they are.
+class row_source {
+public:
+    virtual ~row_source() = default;
+    /// What the writer is told before the first row.
+    virtual table_info table(const document_facts& d) const = 0;
+    /// Checks the whole input before anything is written.
+    virtual void check(const document_facts& d, const std::string& source) const = 0;
+    /// In one pass: checks key `k` of track `name`, whose first key is `first`, before its rows.
+    virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
+    /// A track begins: its rows go to `row`.
+    virtual void begin_track(const std::optional<euler_seq>& euler, bool translation, frame_sink row) = 0;
+    virtual void add(const key& k) = 0;
+    virtual void end_track() = 0;
+};
+
+/// resample: every frame of the grid within a track's keys.
+class frame_rows final : public row_source {
+public:
+    explicit frame_rows(const resample_options& r) : opts_(r) {}
+    table_info table(const document_facts& d) const override {
+        table_info info;
+        info.named = d.named;
+        info.translation = d.translation();
+        info.fps = opts_.fps;
+        info.method = to_string(opts_.how);
+        return info;
+    }
+    /// The frame grid of every track is within bounds.
+    void check(const document_facts& d, const std::string& source) const override {
+        for (const auto& t : d.tracks) {
+            check_method(opts_.how, t.euler);
+            check_frame_range(t.first, t.last, t.name, opts_, source);
+        }
+    }
+    /// Before the key's frames: never hours of output.
+    void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const override {
+        check_frame_range(first, k, name, opts_, source);
+    }
+    void begin_track(const std::optional<euler_seq>& euler, bool translation, frame_sink row) override {
+        resampler_.emplace(opts_, euler, translation, std::move(row));
+    }
+    void add(const key& k) override { resampler_->add(k); }
+    void end_track() override { resampler_->finish(); }
+
+private:
+    resample_options opts_;
+    std::optional<track_resampler> resampler_;
+};
+
+/// convert: each key as it is, with its own frame or time.
+class key_rows final : public row_source {
+public:
+    table_info table(const document_facts& d) const override {
+        table_info info;
+        info.named = d.named;
+        info.translation = d.translation();
+        info.times = time_columns::as_given;
+        info.all_frames = d.all_frames;
+        info.any_time = d.any_time;
+        info.rows_name = d.frames ? "frames" : "keys";
+        if (d.any_frame) info.fps = d.tracks.front().key_fps;
+        return info;
+    }
+    /// Frame numbers at one rate, the one the output states.
+    void check(const document_facts& d, const std::string& source) const override {
+        if (!d.any_frame) return;
+        for (const auto& t : d.tracks)
+            if (t.key_fps != d.tracks.front().key_fps)
+                throw input_error(source, fmt::format("tracks '{}' and '{}' count frames at {} and {} fps: expected "
+                                                      "one rate in a file that convert writes (resample writes times)",
+                                                      d.tracks.front().name, t.name, d.tracks.front().key_fps, t.key_fps));
+    }
+    void check_key(const key&, const key&, const std::string&, const std::string&) const override {}
+    void begin_track(const std::optional<euler_seq>&, bool, frame_sink row) override { row_ = std::move(row); }
+    void add(const key& k) override { row_(key_row(k)); }
+    void end_track() override {}
+
+private:
+    frame_sink row_;
+};
+
+/// One input's resample or convert, settled before it is read.
+struct transform_plan {
+    const options& flags;  // for the output settings, which wait for the input's Euler sequence
+    read_options reading;
+    std::unique_ptr<row_source> rows;
+    format in = format::csv, out = format::csv;
+    std::optional<std::string> target;  // the output file; none for standard output
+};
+
 /// Pass 1 over a streamed input: every key validated, the facts learnt.
 /// Stops early (interleaved = true) when a track comes back after another
 /// one began: such input is then read whole.
-document_facts scan(const options& o, const input_source& src, format f, warnings& warn, bool& interleaved) {
+document_facts scan(const transform_plan& p, const input_source& src, warnings& warn, bool& interleaved) {
     const auto stream = src.open();
-    const read_options ro = reading(o, src);
-    const auto reader = read_ahead(make_key_reader(*stream, f, ro, warn), [] { return true; });
+    const auto reader = make_key_reader(*stream, p.in, p.reading, warn, [] { return true; });
     document_facts d;
     std::set<std::string> seen;
     std::string name;
@@ -128,37 +190,33 @@ document_facts scan(const options& o, const input_source& src, format f, warning
     return d;
 }
 
-/// Pass 1 over a JSON document, where make_json_reader takes it. False when
-/// it does not, or finds an error: the document is then read whole, which
-/// says what is wrong as it always has. Its warnings are held back until it
-/// is known which.
-bool scan_json(const options& o, const input_source& src, document_facts& d, warnings& warn) {
+/// Pass 1 over a JSON document, where the streaming reader takes it. False
+/// when it does not, or finds an error: the document is then read whole,
+/// which says what is wrong as it always has. Its warnings are held back
+/// until it is known which.
+bool scan_json(const transform_plan& p, const input_source& src, document_facts& d, warnings& warn) {
     return with_held_warnings(warn, [&](warnings& attempt) {
         bool interleaved = false;
-        d = scan(o, src, format::json, attempt, interleaved);
+        d = scan(p, src, attempt, interleaved);
         return !interleaved;
     });
 }
 
-sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
-
 /// Pass 2 over a streamed input whose tracks come one after another:
-/// each track is resampled (or converted) as its keys arrive. With `known`
-/// (pass 1's facts) the keys are known to be good; without (one pass), each
-/// track is taken to have translations if its first key has one, and the
-/// keys are checked as pass 1 checks them. Returns the facts seen, or
-/// nothing when a track comes back after another one began.
-std::optional<document_facts> stream_rows(const options& o, const input_source& src, format f,
+/// each track's rows made as its keys arrive. With `known` (pass 1's facts)
+/// the keys are known to be good; without (one pass), each track is taken
+/// to have translations if its first key has one, and the keys are checked
+/// as pass 1 checks them. Returns the facts seen, or nothing when a track
+/// comes back after another one began.
+std::optional<document_facts> stream_rows(const transform_plan& p, const input_source& src,
                                           const document_facts* known, row_pipeline& rows, warnings& warn) {
     const auto stream = src.open();
-    const read_options ro = reading(o, src);
     std::size_t keys = 0, rows_put = 0;
     const auto row = [&](const sample& s) { ++rows_put, rows.row(s); };
-    // Parsing ahead on a thread of its own pays when keys outnumber frames
+    // Parsing ahead on a thread of its own pays when keys outnumber rows
     // (motion capture at 120 Hz resampled to 24 fps, say). Otherwise the
     // formatting threads keep the cores busy, and it would only cost.
-    const auto reader = read_ahead(make_key_reader(*stream, f, ro, warn), [&] { return rows_put < keys; });
-    std::optional<track_resampler> resampler;
+    const auto reader = make_key_reader(*stream, p.in, p.reading, warn, [&] { return rows_put < keys; });
     document_facts seen;
     std::set<std::string> names;
     std::string name;
@@ -170,72 +228,66 @@ std::optional<document_facts> stream_rows(const options& o, const input_source& 
         const bool same_track = !seen.tracks.empty() && seen.tracks.back().name == name;
         if (!known && same_track) check_order(seen.tracks.back().last, k, src.source());
         if (!known && !same_track && !names.insert(name).second) return std::nullopt;
-        if (!known && o.cmd == command::resample)  // before the key's frames: never hours of output
-            check_frame_range(same_track ? seen.tracks.back().first : k, k, name, resampling(o), src.source());
+        if (!known) p.rows->check_key(same_track ? seen.tracks.back().first : k, k, name, src.source());
         if (!same_track) {
-            if (resampler) resampler->finish();
+            if (!seen.tracks.empty()) p.rows->end_track();
             const bool translation = known ? known->tracks[seen.tracks.size()].translation : k.translation.has_value();
             rows.begin_track(name, translation);
-            if (o.cmd == command::resample) resampler.emplace(resampling(o), settings.euler, translation, row);
+            p.rows->begin_track(settings.euler, translation, row);
         }
-        if (resampler) resampler->add(k);
-        else row(key_row(k));
+        p.rows->add(k);
         seen.add(name, settings.euler, settings.key_fps, std::move(k));
     }
-    if (resampler) resampler->finish();
+    if (!seen.tracks.empty()) p.rows->end_track();
     seen.named = reader->named();
     return seen;
 }
 
 /// The tracks of an input read whole.
-void whole_rows(const options& o, const input& doc, row_pipeline& writer) {
-    const auto row = [&](const sample& s) { writer.row(s); };
+void whole_rows(const transform_plan& p, const document& doc, row_pipeline& rows) {
+    const auto row = [&](const sample& s) { rows.row(s); };
     for (const track& t : doc.tracks) {
         bool translation = false;
         for (const key& k : t.keys) translation = translation || k.translation.has_value();
-        writer.begin_track(t.name, translation);
-        if (o.cmd == command::resample) {
-            resample(t, resampling(o), doc.source, row);
-        } else {
-            for (const key& k : t.keys) row(key_row(k));
-        }
+        rows.begin_track(t.name, translation);
+        p.rows->begin_track(t.euler, translation, row);
+        for (const key& k : t.keys) p.rows->add(k);
+        p.rows->end_track();
     }
 }
 
-/// resample or convert from streamed input into -o FILE in one pass. The
-/// writer needs facts before the first row that pass 1 would gather (track
-/// names, translations, convert's time columns); they are guessed from the
-/// first key instead. When a guess proves wrong or anything fails, the
-/// temporary file is dropped and false returned: the two passes then give
-/// the output or the error they always give. Warnings are held back until
-/// the end for the same reason.
-bool transform_in_one_pass(const options& o, const input_source& src, format in_fmt, format out_fmt,
-                           const std::string& target, std::ostream& out, std::ostream& err) {
+/// resample or convert from streamed input into the plan's file in one
+/// pass. The writer needs facts before the first row that pass 1 would
+/// gather (track names, translations, convert's time columns); they are
+/// guessed from the first key instead. When a guess proves wrong or
+/// anything fails, the temporary file is dropped and false returned: the
+/// two passes then give the output or the error they always give. Warnings
+/// are held back until the end for the same reason.
+bool transform_in_one_pass(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
     std::ostringstream held;
     warnings warn(held, src.source());
     try {
         document_facts guess;
         {
             const auto stream = src.open();
-            const read_options ro = reading(o, src);
-            const auto reader = make_key_reader(*stream, in_fmt, ro, warn);
+            const auto reader = make_key_reader(*stream, p.in, p.reading, warn);
             std::string name;
             raw_key raw;
             if (!reader->next(name, raw)) return false;
             guess.add(name, reader->settings().euler, reader->settings().key_fps, make_key(raw, reader->settings(), warn));
             guess.named = reader->named();
         }
-        const write_options wopts = output_settings(o, guess.tracks.front().euler);
-        chunked_output sink(target, out);
-        const auto writer = make_writer(out_fmt, sink.text(), guess.table(o), wopts, warn);
+        const write_options wopts = writing(p.flags, guess.tracks.front().euler);
+        chunked_output sink(p.target, out);
+        const auto writer = make_writer(p.out, sink.text(), p.rows->table(guess), wopts, warn);
         std::optional<document_facts> seen;
         {
             row_pipeline rows(*writer, sink, formatting_threads());
-            seen = stream_rows(o, src, in_fmt, nullptr, rows, warn);
+            seen = stream_rows(p, src, nullptr, rows, warn);
             rows.finish();
         }
-        if (!seen || seen->table(o) != guess.table(o)) return false;
-        seen->check(o, src.source());
+        if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
+        p.rows->check(*seen, src.source());
         for (const auto& t : seen->tracks)
             if (t.translation != t.first.translation.has_value()) return false;
         writer->finish();
@@ -247,32 +299,30 @@ bool transform_in_one_pass(const options& o, const input_source& src, format in_
     return true;
 }
 
-/// resample or convert one input into `target` (a file) or `out`.
-void transform(const options& o, const input_source& src, format in_fmt, format out_fmt,
-               const std::optional<std::string>& target, std::ostream& out, std::ostream& err) {
-    if (target && replaced_on_commit(*target) && transform_in_one_pass(o, src, in_fmt, out_fmt, *target, out, err))
-        return;
+/// resample or convert one input into the plan's file or `out`.
+void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
+    if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, err)) return;
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or
     // in a pipe or device named by -o).
     warnings warn(err, src.source());
     bool read_whole = false;
     document_facts d;
-    std::optional<input> whole;
-    if (in_fmt == format::json) read_whole = !scan_json(o, src, d, warn);
-    else d = scan(o, src, in_fmt, warn, read_whole);
+    std::optional<document> whole;
+    if (p.in == format::json) read_whole = !scan_json(p, src, d, warn);
+    else d = scan(p, src, warn, read_whole);
     if (read_whole) {
-        whole = load(o, src, warn, json_reading::whole);
+        whole = read_document(src, p.in, p.reading, warn, json_reading::whole);
         d = facts_of(*whole);
     }
-    d.check(o, src.source());
-    const write_options wopts = output_settings(o, d.tracks.front().euler);
-    chunked_output sink(target, out);
-    const auto writer = make_writer(out_fmt, sink.text(), d.table(o), wopts, warn);
+    p.rows->check(d, src.source());
+    const write_options wopts = writing(p.flags, d.tracks.front().euler);
+    chunked_output sink(p.target, out);
+    const auto writer = make_writer(p.out, sink.text(), p.rows->table(d), wopts, warn);
     {
         row_pipeline rows(*writer, sink, formatting_threads());
-        if (whole) whole_rows(o, *whole, rows);
-        else stream_rows(o, src, in_fmt, &d, rows, warn);
+        if (whole) whole_rows(p, *whole, rows);
+        else stream_rows(p, src, &d, rows, warn);
         rows.finish();
     }
     writer->finish();
@@ -299,7 +349,7 @@ void check_output_names(const options& o, const std::vector<std::string>& inputs
     };
     std::map<std::pair<dev_t, ino_t>, std::string> input_files;
     for (const std::string& name : inputs)
-        if (const auto id = name == "-" ? std::nullopt : file_id(name)) input_files.emplace(*id, name);
+        if (const auto id = is_standard_stream(name) ? std::nullopt : file_id(name)) input_files.emplace(*id, name);
     // By the output's name without its extension: the inputs, with their output's extension ("*": not known).
     std::map<std::string, std::vector<std::pair<std::string, std::string>>> by_stem;
     for (const std::string& name : inputs) {
@@ -324,18 +374,20 @@ void check_output_names(const options& o, const std::vector<std::string>& inputs
 /// resample or convert one input; errors and warnings to `err`. Returns the status.
 int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err) {
     try {
-        if (name == "-" && o.output_dir) throw usage_error("standard input ('-') cannot be used with --output-dir");
+        if (is_standard_stream(name) && o.output_dir)
+            throw usage_error("standard input ('-') cannot be used with --output-dir");
         const input_source src(name, in);
-        const format in_fmt = src.detect(o.from);
-        std::optional<std::string> target;
-        format out_fmt = o.to.value_or(in_fmt);
+        transform_plan p{o, reading(o, src.source()), nullptr, format::csv, format::csv, std::nullopt};
+        if (o.cmd == command::resample) p.rows = std::make_unique<frame_rows>(resampling(o));
+        else p.rows = std::make_unique<key_rows>();
+        p.in = src.detect(o.from);
+        p.out = o.to.value_or(p.in);
         if (o.output_dir) {
-            target = in_output_dir(*o.output_dir, name, out_fmt).string();
-        } else if (o.output && *o.output != "-") {
-            target = *o.output;
-            if (!o.to) out_fmt = format_of_path(*target).value_or(in_fmt);
+            p.target = in_output_dir(*o.output_dir, name, p.out).string();
+        } else if ((p.target = output_path(o)) && !o.to) {
+            p.out = format_of_path(*p.target).value_or(p.in);
         }
-        transform(o, src, in_fmt, out_fmt, target, out, err);
+        transform(p, src, out, err);
         return 0;
     } catch (const usage_error&) {
         throw;
@@ -400,7 +452,7 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
 }  // namespace
 
 int run_transform(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
-    const std::vector<std::string> inputs = o.inputs.empty() ? std::vector<std::string>{"-"} : o.inputs;
+    const std::vector<std::string> inputs = input_names(o);
     if (inputs.size() > 1 && !o.output_dir) throw usage_error("several input files need --output-dir DIR");
     if (o.output_dir && o.output) throw usage_error("-o and --output-dir: expected one of them");
     if (o.output_dir) {

@@ -62,33 +62,28 @@ quat squad_control(quat prev, quat cur, quat next) noexcept {
     return cur * exp(-0.25 * sum);
 }
 
-quat squad(quat q0, quat q1, quat s0, quat s1, double h) noexcept {
-    return slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2 * h * (1 - h));
-}
-
 segment_curve segment::curve() const noexcept {
     segment_curve c;
-    c.how_ = how_;
-    c.q0_ = q0, c.q1_ = q1;
+    c.keys_ = *this;
     if (how_ == method::slerp || how_ == method::squad) c.arc_ = slerp_segment(q0, q1);
     if (how_ == method::squad) c.control_arc_ = slerp_segment(s0_, s1_);
-    if (how_ == method::euler) c.e0_ = e0_, c.e1_ = e1_, c.seq_ = seq_;
     return c;
 }
 
 quat segment_curve::at(double h) const noexcept {
-    switch (how_) {
+    switch (keys_.how_) {
         case method::slerp: return arc_.at(h);
-        case method::nlerp: return nlerp(q0_, q1_, h);
+        case method::nlerp: return nlerp(keys_.q0, keys_.q1, h);
+        // Shoemake's squad: slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)).
         case method::squad: return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h));
-        case method::step: return q0_;
+        case method::step: return keys_.q0;
         case method::euler: {
             std::array<double, 3> e{};
-            for (std::size_t j = 0; j < 3; ++j) e[j] = (1 - h) * e0_[j] + h * e1_[j];
-            return from_euler(e, seq_);
+            for (std::size_t j = 0; j < 3; ++j) e[j] = (1 - h) * keys_.e0_[j] + h * keys_.e1_[j];
+            return from_euler(e, keys_.seq_);
         }
     }
-    return q0_;
+    return keys_.q0;
 }
 
 void check_method(method m, const std::optional<euler_seq>& seq) {

@@ -139,12 +139,6 @@ track track_builder::finish(warnings& warn) && {
     return std::move(track_);
 }
 
-track make_track(const raw_track& raw, warnings& warn) {
-    track_builder t(raw.name, raw.at, raw.settings);
-    for (const raw_key& k : raw.keys) t.add(k, warn);
-    return std::move(t).finish(warn);
-}
-
 std::string where(const std::string& source, const location& at) {
     if (!at.path.empty()) return fmt::format("{}: {}", source, at.path);
     if (at.line) return fmt::format("{}:{}", source, at.line);

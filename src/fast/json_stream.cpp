@@ -19,7 +19,7 @@
 
 #include "io/json_keys.hpp"
 #include "fast/flat_json.hpp"
-#include "io/io_json.hpp"
+#include "fast/json_stream.hpp"
 
 namespace keyrot {
 namespace {
@@ -167,11 +167,6 @@ struct key_arrays {
     std::deque<key_array> arrays;  // under mutex
 };
 
-/// A key's place, read_ahead's line number for it: its array's number above
-/// these bits, its number in the array in them.
-constexpr std::size_t index_bits = 32;
-static_assert(sizeof(std::size_t) * 8 > index_bits, "a 64-bit size_t holds both numbers");
-
 /// Keys, each parsed from its own text: the reader's parser, and copies on
 /// read_ahead's threads.
 class json_keys final : public line_parser {
@@ -181,14 +176,14 @@ public:
 
     /// The key whose text is `text`, at `place` (its array's number, and its
     /// number in the array).
-    bool parse(std::string_view text, std::size_t place, std::string& track, raw_key& k) override {
-        if (const std::size_t number = place >> index_bits; number != number_) {
+    bool parse(std::string_view text, const text_place& place, std::string& track, raw_key& k) override {
+        if (place.array != number_) {
             const std::lock_guard lock(arrays_->mutex);
-            array_ = &arrays_->arrays[number];
-            number_ = number;
+            array_ = &arrays_->arrays[place.array];
+            number_ = place.array;
         }
         if (!key_.parse(text)) decline();
-        const fmt::format_int index(place & ((std::size_t{1} << index_bits) - 1));
+        const fmt::format_int index(place.index);
         location at{0, array_->path};
         at.path.append("[").append(index.data(), index.size()).append("]");
         k = detail::key_object_reader(key_.root(), arrays_->source, std::move(at), array_->order, array_->frames).read();
@@ -211,7 +206,7 @@ private:
 /// applies to, "tracks" beside "keys", a repeated name, a track without
 /// keys, anything flat_json declines. Errors, too, are left to read_json,
 /// which reports them in its own order.
-class json_stream_reader final : public key_reader {
+class json_stream_reader final : public line_key_reader {
 public:
     json_stream_reader(std::istream& in, const read_options& opts, warnings& warn)
         : text_(in, opts.max_bytes), opts_(opts), warn_(warn), document_(object::kind::document, "", "", opts.settings, opts.order),
@@ -228,13 +223,13 @@ public:
 
     bool next(std::string& track, raw_key& k) override {
         std::string_view text;
-        std::size_t place = 0;
+        text_place place;
         return next_line(text, place) && keys_.parse(text, place, track, k);
     }
 
     /// The next key's text, and its place: its array's number, and its
     /// number in the array.
-    bool next_line(std::string_view& text, std::size_t& place) override {
+    bool next_line(std::string_view& text, text_place& place) override {
         for (;;) {
             if (in_keys_) {
                 if (text_.peek() != ']') break;
@@ -249,9 +244,9 @@ public:
             }
         }
         if (count_ > 0) text_.take(',');
-        if (count_ >> index_bits != 0) decline();  // four billion keys in one array: no place left
         text = text_.value();
-        place = (arrays_begun_ - 1) << index_bits | count_++;
+        place.array = arrays_begun_ - 1;
+        place.index = count_++;
         return true;
     }
 
@@ -365,7 +360,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<key_reader> make_json_reader(std::istream& in, const read_options& opts, warnings& warn) {
+std::unique_ptr<line_key_reader> make_json_reader(std::istream& in, const read_options& opts, warnings& warn) {
     return std::make_unique<json_stream_reader>(in, opts, warn);
 }
 

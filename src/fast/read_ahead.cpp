@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "io/io.hpp"
+#include "fast/read_ahead.hpp"
 #include "fast/thread_start.hpp"
 
 namespace keyrot {
@@ -27,7 +27,7 @@ namespace {
 /// without the threads.
 class read_ahead_reader final : public key_reader {
 public:
-    read_ahead_reader(std::unique_ptr<key_reader> inner, std::function<bool()> worth_it)
+    read_ahead_reader(std::unique_ptr<line_key_reader> inner, std::function<bool()> worth_it)
         : inner_(std::move(inner)), worth_it_(std::move(worth_it)) {}
     read_ahead_reader(const read_ahead_reader&) = delete;
     read_ahead_reader& operator=(const read_ahead_reader&) = delete;
@@ -74,7 +74,7 @@ private:
         std::vector<std::pair<std::string, raw_key>> keys;
         std::vector<const key_settings*> settings;               // each key's, where the parser has them
         std::string text;                                        // the lines
-        std::vector<std::pair<std::size_t, std::size_t>> lines;  // each one's end in text, and its number
+        std::vector<std::pair<std::size_t, text_place>> lines;  // each one's end in text, and its place
         bool last = false;                                       // no keys after these
         std::exception_ptr failure;                              // what ended the input early, with last
     };
@@ -130,10 +130,10 @@ private:
         b.lines.clear();
         try {
             std::string_view line;
-            std::size_t line_no = 0;
-            while (b.lines.size() < batch_lines && inner_->next_line(line, line_no)) {
+            text_place at;
+            while (b.lines.size() < batch_lines && inner_->next_line(line, at)) {
                 b.text += line;
-                b.lines.emplace_back(b.text.size(), line_no);
+                b.lines.emplace_back(b.text.size(), at);
             }
             b.last = b.lines.size() < batch_lines;
         } catch (...) {
@@ -145,10 +145,10 @@ private:
         try {
             b.keys.resize(b.lines.size());
             b.settings.resize(b.lines.size());
-            for (const auto& [end, line_no] : b.lines) {
+            for (const auto& [end, at] : b.lines) {
                 const std::string_view line(b.text.data() + begin, end - begin);
                 begin = end;
-                if (parser.parse(line, line_no, b.keys[n].first, b.keys[n].second)) b.settings[n++] = parser.settings();
+                if (parser.parse(line, at, b.keys[n].first, b.keys[n].second)) b.settings[n++] = parser.settings();
             }
         } catch (...) {  // the keys before it still go out
             failed(b);
@@ -168,7 +168,7 @@ private:
         changed_.notify_all();
     }
 
-    std::unique_ptr<key_reader> inner_;
+    std::unique_ptr<line_key_reader> inner_;
     std::function<bool()> worth_it_;  // asked once, then empty
     std::size_t inline_keys_ = 0;
     batch current_;  // the caller's
@@ -191,7 +191,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<key_reader> read_ahead(std::unique_ptr<key_reader> reader, std::function<bool()> worth_it) {
+std::unique_ptr<key_reader> read_ahead(std::unique_ptr<line_key_reader> reader, std::function<bool()> worth_it) {
     return std::make_unique<read_ahead_reader>(std::move(reader), std::move(worth_it));
 }
 

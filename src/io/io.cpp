@@ -2,9 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <map>
-#include <sstream>
 
+#include "fast/json_stream.hpp"
+#include "fast/read_ahead.hpp"
 #include "io/io_csv.hpp"
 #include "io/io_json.hpp"
 
@@ -15,32 +15,13 @@ void check_track_name(const std::string& name, const std::string& where) {
         throw input_error(where, fmt::format("track name '{}' has control characters: expected printable text", excerpt(name)));
 }
 
-std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn) {
-    if (f == format::json) return make_json_reader(in, opts, warn);
-    if (f == format::ndjson) return make_ndjson_reader(in, opts, warn);
-    return make_csv_reader(in, opts, warn);
-}
-
-raw_document read_document(std::istream& in, format f, const read_options& opts, warnings& warn) {
-    if (f == format::json) return read_json(in, opts, warn);
-    const auto reader = make_key_reader(in, f, opts, warn);
-    raw_document doc;
-    std::map<std::string, std::size_t> index;
-    std::string name;
-    raw_key k;
-    while (reader->next(name, k)) {
-        const auto [it, added] = index.emplace(name, doc.tracks.size());
-        if (added) doc.tracks.push_back(raw_track{name, k.at, opts.settings, {}});
-        doc.tracks[it->second].keys.push_back(std::move(k));
-    }
-    doc.named = reader->named();
-    if (doc.tracks.empty()) throw input_error(where(opts.source, reader->start()), "no keys: expected at least one key");
-    return doc;
-}
-
-raw_document read_document(std::string_view text, format f, const read_options& opts, warnings& warn) {
-    std::istringstream in{std::string(text)};
-    return read_document(in, f, opts, warn);
+std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn,
+                                            std::function<bool()> parse_ahead) {
+    std::unique_ptr<line_key_reader> reader = f == format::json     ? make_json_reader(in, opts, warn)
+                                              : f == format::ndjson ? make_ndjson_reader(in, opts, warn)
+                                                                    : make_csv_reader(in, opts, warn);
+    if (parse_ahead) return read_ahead(std::move(reader), std::move(parse_ahead));
+    return reader;
 }
 
 rotation_values row_values(const sample& s, const write_options& opts, warnings& warn) {

@@ -31,11 +31,6 @@ struct read_options {
     std::size_t max_bytes = default_max_bytes;
 };
 
-struct raw_document {
-    std::vector<raw_track> tracks;  ///< in order of first appearance
-    bool named = false;             ///< the input had a track column / tracks object
-};
-
 /// Takes a JSON document's keys as they are read, track after track, so
 /// that its raw keys need not all be held at once.
 class raw_key_sink {
@@ -49,20 +44,6 @@ public:
 /// Throws input_error for a track name with control characters.
 void check_track_name(const std::string& name, const std::string& where);
 
-/// The keys on the lines of a key_reader whose keys each take one line
-/// (CSV, NDJSON), parsed apart from each other: one parser to a thread.
-class line_parser {
-public:
-    virtual ~line_parser() = default;
-    /// The key on line `line_no`, and the name of its track; false for a line
-    /// with none (blank, a comment). Throws input_error as key_reader::next.
-    virtual bool parse(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) = 0;
-    /// Where settings differ from track to track (a JSON document's): those
-    /// of the key parse() read last, valid as long as the reader. Otherwise
-    /// none: the reader's hold for every key.
-    virtual const key_settings* settings() const { return nullptr; }
-};
-
 /// Keys one at a time from a line-based document (CSV, NDJSON), in file
 /// order, so that a long track needs no more memory than a few keys.
 class key_reader {
@@ -71,13 +52,6 @@ public:
     /// The next key and the name of its track ("" without tracks); false at
     /// the end. Throws input_error for a malformed line.
     virtual bool next(std::string& track, raw_key& k) = 0;
-    /// Where each key takes one line: a parser for the lines of
-    /// next_line(), which then stands in for next(). Otherwise none, as
-    /// for NDJSON before its first key.
-    virtual std::unique_ptr<line_parser> parser() const { return nullptr; }
-    /// With a parser(): the next line as it is (valid until the next call)
-    /// and its number; false at the end.
-    virtual bool next_line(std::string_view& /*line*/, std::size_t& /*line_no*/) { return false; }
     /// The input names its tracks (a track column, "track" fields).
     virtual bool named() const = 0;
     /// Where the keys start (the CSV header), for "no keys" errors.
@@ -86,33 +60,16 @@ public:
     /// document's own fields over the flags; for line-based input, the
     /// flags' for every key.
     virtual const key_settings& settings() const = 0;
-
-protected:
-    /// next() for a reader whose lines `parser` reads.
-    bool next_parsed(line_parser& parser, std::string& track, raw_key& k) {
-        std::string_view line;
-        std::size_t line_no = 0;
-        while (next_line(line, line_no))
-            if (parser.parse(line, line_no, track, k)) return true;
-        return false;
-    }
 };
 
 /// For format::csv or format::ndjson, or format::json where the document
-/// allows (make_json_reader). Warnings (unknown columns) go to `warn`.
-std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn);
-
-/// `reader`'s keys, parsed on threads of their own ahead of the caller once
-/// more than a thousand have come and `worth_it()` (asked then, on the
-/// caller's thread) says so: on two, a batch of lines each in turn, with
-/// copies of the reader's parser() (none: no threads). The caller must not
-/// use the reader's stream.
-std::unique_ptr<key_reader> read_ahead(std::unique_ptr<key_reader> reader, std::function<bool()> worth_it);
-
-/// A whole document, keys grouped into tracks by name in order of first
-/// appearance. Warnings (unknown columns, say) go to `warn`.
-raw_document read_document(std::istream& in, format f, const read_options& opts, warnings& warn);
-raw_document read_document(std::string_view text, format f, const read_options& opts, warnings& warn);
+/// allows (make_json_reader). Warnings (unknown columns) go to `warn`. With
+/// `parse_ahead`, keys are parsed on threads of their own ahead of the
+/// caller once more than a thousand have come and `parse_ahead()` (asked
+/// once, then, on the caller's thread) says it pays; the caller must not
+/// use `in` meanwhile.
+std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn,
+                                            std::function<bool()> parse_ahead = nullptr);
 
 /// Frame / key time columns of a table.
 enum class time_columns {

@@ -182,7 +182,8 @@ public:
     csv_rows(columns cols, std::string source) : cols_(std::move(cols)), source_(std::move(source)) {}
     const columns& cols() const noexcept { return cols_; }
 
-    bool parse(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) override {
+    bool parse(std::string_view line, const text_place& place, std::string& track, raw_key& k) override {
+        const std::size_t line_no = place.line;
         if (read_plain(line, line_no, track, k)) return true;
         if (skipped(line, source_, line_no)) return false;
         const auto where = [&] { return fmt::format("{}:{}", source_, line_no); };
@@ -271,7 +272,7 @@ private:
     cell_splitter splitter_;
 };
 
-class csv_reader final : public key_reader {
+class csv_reader final : public line_key_reader {
 public:
     csv_reader(std::istream& in, const read_options& opts, warnings& warn)
         : lines_(in, opts.max_bytes, opts.source), settings_(opts.settings) {
@@ -327,14 +328,14 @@ public:
 
     bool next(std::string& track, raw_key& k) override { return next_parsed(*rows_, track, k); }
 
-    bool next_line(std::string_view& line, std::size_t& line_no) override {
+    bool next_line(std::string_view& line, text_place& at) override {
         if (first_key_line_ != 0) {
             line = first_key_;
-            line_no = std::exchange(first_key_line_, 0);
+            at.line = std::exchange(first_key_line_, 0);
             return true;
         }
         if (!lines_.next(line)) return false;
-        line_no = lines_.number();
+        at.line = lines_.number();
         return true;
     }
 
@@ -372,7 +373,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<key_reader> make_csv_reader(std::istream& in, const read_options& opts, warnings& warn) {
+std::unique_ptr<line_key_reader> make_csv_reader(std::istream& in, const read_options& opts, warnings& warn) {
     return std::make_unique<csv_reader>(in, opts, warn);
 }
 

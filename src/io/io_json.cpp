@@ -169,7 +169,7 @@ void read_track(Value j, std::string name, const std::string& path, key_settings
     if (!keys->is_array())
         throw input_error(where, fmt::format("'{}': expected an array of keys, got {}", field.empty() ? name : field,
                                              keys->type_name()));
-    sink.begin_track(raw_track{std::move(name), location{0, keys_path.empty() ? "document" : keys_path}, settings, {}});
+    sink.begin_track(raw_track{std::move(name), location{0, keys_path.empty() ? "document" : keys_path}, settings});
     std::size_t index = 0;
     keys->elements([&](Value key) {
         const location at{0, fmt::format("{}[{}]", keys_path, index++)};
@@ -202,14 +202,6 @@ bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink, warn
     return false;
 }
 
-/// Builds the raw document.
-class raw_document_sink final : public raw_key_sink {
-public:
-    raw_document doc;
-    void begin_track(raw_track header) override { doc.tracks.push_back(std::move(header)); }
-    void key(raw_key&& k) override { doc.tracks.back().keys.push_back(std::move(k)); }
-};
-
 }  // namespace
 
 bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, warnings& warn) {
@@ -232,12 +224,6 @@ bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, w
     flat_json flat;
     if (flat.parse(text)) return read_json_value(flat.root(), opts, sink, warn);
     return read_json_value(dom_value(parse_dom(text, opts.source, 1)), opts, sink, warn);
-}
-
-raw_document read_json(std::istream& in, const read_options& opts, warnings& warn) {
-    raw_document_sink sink;
-    sink.doc.named = read_json(in, opts, sink, warn);
-    return std::move(sink.doc);
 }
 
 namespace {
@@ -265,7 +251,8 @@ public:
     /// Whether lines have a "track"; none before the first key.
     std::optional<bool> named() const noexcept { return named_; }
 
-    bool parse(std::string_view line, std::size_t line_no, std::string& track, raw_key& k) override {
+    bool parse(std::string_view line, const text_place& at, std::string& track, raw_key& k) override {
+        const std::size_t line_no = at.line;
         // The same header again is two of keyrot's outputs one after the other (cat a.ndjson b.ndjson).
         if (trim(line).empty() || (!header_.empty() && trim(line) == header_)) return false;
         if (fast_.parse(line)) read(fast_.root(), line_no, track, k);
@@ -302,7 +289,7 @@ private:
     flat_json fast_{detail::max_key_values};  // most lines; the rest, and all errors, by nlohmann-json
 };
 
-class ndjson_reader final : public key_reader {
+class ndjson_reader final : public line_key_reader {
 public:
     ndjson_reader(std::istream& in, const read_options& opts, warnings& warn)
         : lines_(in, opts.max_bytes, opts.source), settings_(opts.settings), keys_(opts.source, opts.order) {
@@ -336,14 +323,14 @@ public:
 
     bool next(std::string& track, raw_key& k) override { return next_parsed(keys_, track, k); }
 
-    bool next_line(std::string_view& line, std::size_t& line_no) override {
+    bool next_line(std::string_view& line, text_place& at) override {
         if (first_line_no_ != 0) {
             line = first_line_;
-            line_no = std::exchange(first_line_no_, 0);
+            at.line = std::exchange(first_line_no_, 0);
             return true;
         }
         if (!lines_.next(line)) return false;
-        line_no = lines_.number();
+        at.line = lines_.number();
         return true;
     }
 
@@ -365,7 +352,7 @@ private:
 
 }  // namespace
 
-std::unique_ptr<key_reader> make_ndjson_reader(std::istream& in, const read_options& opts, warnings& warn) {
+std::unique_ptr<line_key_reader> make_ndjson_reader(std::istream& in, const read_options& opts, warnings& warn) {
     return std::make_unique<ndjson_reader>(in, opts, warn);
 }
 

@@ -147,7 +147,7 @@ std::unique_ptr<input_source::spool> make_spool(const std::string& source,
 
 input_source::input_source(const std::string& name, std::istream& stdin_stream)
     : name_(name), source_(source_name(name)) {
-    if (name != "-") {
+    if (!is_standard_stream(name)) {
         const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
         if (fd < 0) throw error(fmt::format("cannot read '{}': {}", name, errno_text()));
         struct stat st {};
@@ -216,7 +216,7 @@ std::unique_ptr<std::istream> input_source::open() const {
 
 format input_source::detect(std::optional<format> given) const {
     if (given) return *given;
-    if (name_ != "-")
+    if (!is_standard_stream(name_))
         if (auto by_name = format_of_path(name_)) return *by_name;
     // The first 64 KiB decide (sniff_format needs the first line).
     std::string start(std::size_t{1} << 16, '\0');

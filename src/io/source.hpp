@@ -10,13 +10,17 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "keyrot/format.hpp"
 
 namespace keyrot {
 
+/// The name of standard input and standard output on the command line.
+inline constexpr std::string_view standard_stream = "-";
+inline bool is_standard_stream(std::string_view name) noexcept { return name == standard_stream; }
 /// How messages name the input `name`: the path, or "<stdin>" for "-".
-inline std::string source_name(const std::string& name) { return name == "-" ? "<stdin>" : name; }
+inline std::string source_name(const std::string& name) { return is_standard_stream(name) ? "<stdin>" : name; }
 
 class input_source {
 public:

@@ -12,7 +12,9 @@
 #include "../json_same.hpp"
 #include "check.hpp"
 #include "fast/flat_json.hpp"
+#include "io/document.hpp"
 #include "io/io.hpp"
+#include "io/io_json.hpp"
 
 namespace {
 
@@ -40,6 +42,17 @@ std::string streamed(std::string_view text, const keyrot::read_options& opts, ke
     }
 }
 
+/// The keys read_json reads from the whole document, described as streamed() does.
+class described_keys final : public keyrot::raw_key_sink {
+public:
+    std::string text;
+    void begin_track(keyrot::raw_track header) override { track_ = std::move(header); }
+    void key(keyrot::raw_key&& k) override { text += describe(track_.name, track_.settings, k); }
+
+private:
+    keyrot::raw_track track_;
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -50,8 +63,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto text = keyrot::fuzz::text(data, size);
     for (const keyrot::format f : {keyrot::format::json, keyrot::format::ndjson}) {
         try {
-            const auto doc = keyrot::read_document(text, f, opts, warn);
-            for (const auto& raw : doc.tracks) keyrot::fuzz::check_track(keyrot::make_track(raw, warn));
+            std::istringstream in{std::string(text)};
+            for (const auto& t : keyrot::read_document(in, f, opts, warn).tracks) keyrot::fuzz::check_track(t);
         } catch (const keyrot::error&) {
         }
     }
@@ -59,10 +72,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (const std::string keys = streamed(text, opts, warn); keys != "declined") {
         std::string whole;
         try {
-            const auto doc = keyrot::read_document(text, keyrot::format::json, opts, warn);
-            whole = doc.named ? "named\n" : "";
-            for (const auto& t : doc.tracks)
-                for (const auto& k : t.keys) whole += describe(t.name, t.settings, k);
+            std::istringstream in{std::string(text)};
+            described_keys read;
+            whole = keyrot::read_json(in, opts, read, warn) ? "named\n" : "";
+            whole += read.text;
         } catch (const keyrot::error&) {
             std::abort();
         }

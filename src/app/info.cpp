@@ -1,0 +1,103 @@
+// info: what an input holds, track by track.
+#include <fmt/format.h>
+
+#include <ostream>
+
+#include "app/commands.hpp"
+#include "app/plan.hpp"
+#include "io/document.hpp"
+#include "io/layout.hpp"
+#include "keyrot/describe.hpp"
+
+namespace keyrot::detail {
+
+namespace {
+
+std::string index_list(const std::vector<std::size_t>& v) {
+    return v.empty() ? std::string("none") : fmt::format("{}", fmt::join(v, ", "));
+}
+
+std::string rep_list(const std::vector<rep>& reps) {
+    std::vector<std::string_view> names;
+    for (rep r : reps) names.push_back(to_string(r));
+    return fmt::format("{}", fmt::join(names, ", "));
+}
+
+std::string info_text(const document& doc, const std::vector<track_info>& infos, std::optional<int> precision) {
+    auto num = [precision](double v) {
+        std::string s;
+        append_number(s, v, precision.value_or(6));
+        return s;
+    };
+    // (printable: a file name's control bytes must not reach a terminal raw)
+    std::string out = fmt::format("{}: {} track{}, {}\n", printable(doc.source), infos.size(), infos.size() == 1 ? "" : "s",
+                                  to_string(doc.fmt));
+    for (const track_info& t : infos) {
+        out += fmt::format("{}: {} key{}, {} s to {} s, given as {}\n", t.name.empty() ? "track" : "track " + t.name,
+                           t.keys, t.keys == 1 ? "" : "s", num(t.start), num(t.end), rep_list(t.given_as));
+        for (std::size_t i = 0; i < t.segments.size(); ++i) {
+            const segment_info& s = t.segments[i];
+            if (i == 0) out += "  segment  angle (deg)  speed (deg/s)\n";
+            const bool long_way = s.direct_long_way && t.signed_keys;
+            out += fmt::format("  {:<7}  {:<11}  {}{}\n", fmt::format("{}-{}", i, i + 1), num(s.angle_deg),
+                               num(s.speed_deg_s), long_way ? "  (long way with --path direct)" : "");
+        }
+        if (t.signed_keys) out += fmt::format("  keys flipped by --path shortest: {}\n", index_list(t.flipped));
+        out += fmt::format("  keys renormalised: {}\n", index_list(t.renormalised));
+        out += fmt::format("  Euler keys within {} deg of gimbal lock: {}\n", near_gimbal_deg, index_list(t.near_gimbal));
+    }
+    return out;
+}
+
+std::string info_json(const document& doc, const std::vector<track_info>& infos) {
+    auto num = [](double v) {
+        std::string s;
+        append_number(s, v, std::nullopt);
+        return s;
+    };
+    auto list = [](const std::vector<std::size_t>& v) { return fmt::format("[{}]", fmt::join(v, ", ")); };
+    std::string out = "{\"source\": " + json_quote(doc.source) + ", \"format\": \"" +
+                      std::string(to_string(doc.fmt)) + "\", \"tracks\": [";
+    for (std::size_t n = 0; n < infos.size(); ++n) {
+        const track_info& t = infos[n];
+        std::vector<std::string> reps, segments;
+        for (rep r : t.given_as) reps.push_back(fmt::format("\"{}\"", to_string(r)));
+        for (const segment_info& s : t.segments)
+            segments.push_back(fmt::format("{{\"angle\": {}, \"speed\": {}, \"direct_long_way\": {}}}", num(s.angle_deg),
+                                           num(s.speed_deg_s), t.signed_keys ? fmt::format("{}", s.direct_long_way) : "null"));
+        out += fmt::format(
+            "{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}], \"segments\": [{}], "
+            "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}}}",
+            n ? "," : "", json_quote(t.name), t.keys, num(t.start), num(t.end), fmt::join(reps, ", "),
+            fmt::join(segments, ", "), t.signed_keys ? list(t.flipped) : "null", list(t.renormalised), list(t.near_gimbal));
+    }
+    out += "]}\n";
+    return out;
+}
+
+}  // namespace
+
+int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
+    const bool as_json = o.to == format::json || (o.output && format_of_path(*o.output) == format::json);
+    std::string text;
+    int status = 0;
+    for (const std::string& name : input_names(o)) {
+        try {
+            const input_source src(name, in);
+            warnings warn(err, src.source());
+            const document doc = read_input(o, src, warn);
+            std::vector<track_info> infos;
+            for (const track& t : doc.tracks) infos.push_back(describe(t));
+            text += as_json ? info_json(doc, infos) : info_text(doc, infos, o.precision);
+        } catch (const usage_error&) {
+            throw;
+        } catch (const error& e) {
+            print_error(err, e.what());
+            status = 2;
+        }
+    }
+    emit(o, text, out);
+    return status;
+}
+
+}  // namespace keyrot::detail

@@ -1,0 +1,63 @@
+#include "app/plan.hpp"
+
+#include "io/output.hpp"
+
+namespace keyrot::detail {
+
+std::vector<std::string> input_names(const options& o) {
+    if (o.inputs.empty()) return {std::string(standard_stream)};
+    return o.inputs;
+}
+
+std::optional<std::string> output_path(const options& o) {
+    if (!o.output || is_standard_stream(*o.output)) return std::nullopt;
+    return o.output;
+}
+
+key_settings settings_of(const options& o) {
+    return {o.radians ? angle_unit::radians : angle_unit::degrees, o.euler, o.key_fps.value_or(o.fps), o.strict};
+}
+
+read_options reading(const options& o, const std::string& source) {
+    read_options ro;
+    ro.source = source;
+    ro.settings = settings_of(o);
+    ro.order = o.order;
+    ro.given.angles = o.radians;
+    ro.given.key_fps = o.key_fps.has_value();
+    ro.max_bytes = o.max_bytes;
+    return ro;
+}
+
+write_options writing(const options& o, const std::optional<euler_seq>& input_euler) {
+    write_options w;
+    w.representation = o.representation;
+    w.angles = o.out_angles.value_or(o.radians ? angle_unit::radians : angle_unit::degrees);
+    w.order = o.order;
+    w.precision = o.precision;
+    if (w.representation == rep::euler) {
+        w.euler = o.out_euler ? o.out_euler : input_euler;
+        if (!w.euler) throw usage_error("--rep euler needs an Euler sequence: expected --out-euler SEQ or --euler SEQ");
+    }
+    return w;
+}
+
+resample_options resampling(const options& o) {
+    resample_options r;
+    r.fps = o.fps;
+    r.how = o.how;
+    r.way = o.way;
+    r.max_frames = o.max_frames;
+    return r;
+}
+
+document read_input(const options& o, const input_source& src, warnings& warn) {
+    return read_document(src, src.detect(o.from), reading(o, src.source()), warn, json_reading::streamed_first);
+}
+
+void emit(const options& o, const std::string& text, std::ostream& out) {
+    if (const auto file = output_path(o)) write_file_atomically(*file, text);
+    else write_to_stream(out, text);
+}
+
+}  // namespace keyrot::detail

@@ -1,0 +1,36 @@
+#pragma once
+// What the commands make of the options before they read: the settings of
+// reading, sampling and writing, and where inputs and output are.
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/document.hpp"
+#include "io/io.hpp"
+#include "io/source.hpp"
+#include "keyrot/app.hpp"
+
+namespace keyrot::detail {
+
+/// The inputs named, standard input ("-") when none is.
+std::vector<std::string> input_names(const options& o);
+/// The file -o names; none for standard output (no -o, or -o -).
+std::optional<std::string> output_path(const options& o);
+
+/// The key settings the flags give (a document may state its own).
+key_settings settings_of(const options& o);
+/// How the input that messages call `source` is read.
+read_options reading(const options& o, const std::string& source);
+/// How rows are written, the Euler sequence of rep::euler being --out-euler's,
+/// else the input's. Throws usage_error for rep::euler without either.
+write_options writing(const options& o, const std::optional<euler_seq>& input_euler);
+resample_options resampling(const options& o);
+
+/// An input read whole (compare, info), a JSON document streamed if it can be.
+document read_input(const options& o, const input_source& src, warnings& warn);
+
+/// Writes `text` to -o FILE (atomically) or to `out`.
+void emit(const options& o, const std::string& text, std::ostream& out);
+
+}  // namespace keyrot::detail

@@ -1,0 +1,330 @@
+// Reading JSON documents and NDJSON lines, whole and streamed.
+#include "io/io_json.hpp"
+
+#include <doctest/doctest.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <sstream>
+
+#include "helpers.hpp"
+#include "reading.hpp"
+#include "fast/flat_json.hpp"
+#include "fast/json_stream.hpp"
+
+using namespace keyrot;
+using keyrot::test::error_of;
+using keyrot::test::raw_json;
+using keyrot::test::read;
+using keyrot::test::read_json_keys;
+
+TEST_CASE("JSON: keys, tracks, quaternion order and objects, document fields") {
+    const auto doc = read_json_keys(R"({"angles": "radians", "euler": "zyx", "quat_order": "xyzw", "keys": [
+        {"time": 0, "quat": [0, 0, 1, 0]},
+        {"time": 1, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}},
+        {"frame": 48, "axis": [0, 0, 1], "angle": 1.5, "translation": [1, 2, 3]},
+        {"time": 3, "rotvec": [0, 1, 0]},
+        {"time": 4, "euler": [1, 2, 3]},
+        {"time": 5, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]})");
+    const auto& t = doc.tracks[0];
+    CHECK(t.header.settings.angles == angle_unit::radians);
+    CHECK(t.header.settings.euler->name == "zyx");
+    CHECK(t.keys[0].values[0] == 0);  // [0, 0, 1, 0] in xyzw: w = 0, z = 1
+    CHECK(t.keys[0].values[3] == 1);
+    CHECK(t.keys[1].values[0] == 1);
+    CHECK(*t.keys[2].frame == 48);
+    CHECK(t.keys[2].translation->y == 2);
+    CHECK(t.keys[5].kind == rep::matrix);
+    CHECK(t.keys[3].at.path == "keys[3]");
+
+    const auto tracks = read(R"({"tracks": {"hip": {"keys": [{"time": 0, "quat": [1,0,0,0]}]},
+                                            "knee": [{"time": 0, "quat": [1,0,0,0]}]}})",
+                             format::json);  // as the commands read it, into tracks
+    CHECK(tracks.named);
+    CHECK(tracks.tracks.size() == 2);
+    CHECK(tracks.tracks[1].name == "knee");
+    CHECK(read(R"([{"time": 0, "quat": [1,0,0,0]}])", format::json).tracks[0].keys.size() == 1);
+    // keyrot's own output: frames with both frame and time, fps as the key rate
+    const auto frames = read(R"({"fps": 30, "frames": [{"frame": 4, "quat": [1,0,0,0]}]})", format::json);
+    CHECK(frames.tracks[0].key_fps == 30);
+    CHECK(frames.tracks[0].keys[0].time * 30 == 4);
+}
+
+TEST_CASE("JSON errors name the key path and what was expected") {
+    CHECK(error_of(R"({"tracks": {"hip": {"keys": [{"time": 0, "quat": [1,0,0,0]}, {"time": 1, "quat": [1,0,0]}]}}})",
+                   format::json) == "in: tracks.hip.keys[1]: 'quat': expected an array of 4 numbers, got 3 elements");
+    CHECK(error_of(R"({"keys": [{"time": "0", "quat": [1,0,0,0]}]})", format::json) ==
+          "in: keys[0]: 'time': expected a number, got string \"0\"");
+    CHECK(error_of(R"({"keys": [{"time": 0, "quat": [1,0,0,0], "rotvec": [0,0,0]}]})", format::json).find("more than one rotation") !=
+          std::string::npos);
+    CHECK(error_of(R"({"keys": [{"time": 0, "frame": 0, "quat": [1,0,0,0]}]})", format::json) ==
+          "in: keys[0]: a key has both 'time' and 'frame': expected exactly one");
+    CHECK(error_of(R"({"keys": [{"quat": [1,0,0,0]}]})", format::json) == "in: keys[0]: expected a 'time' or a 'frame'");
+    CHECK(error_of("{\"keys\": [\n{\"time\": 0,", format::json).find("in:2:12: invalid JSON") == 0);
+    CHECK(error_of(std::string(100, '[') + std::string(100, ']'), format::json).find("nested deeper") != std::string::npos);
+    CHECK(error_of(R"({"keys": [{"time": 0, "matrix": [[1,0,0],[0,1,0]]}]})", format::json).find("expected 3 or 4 rows") !=
+          std::string::npos);
+    CHECK(error_of(R"({"euler": "XXY", "keys": []})", format::json).find("'euler': expected a sequence") != std::string::npos);
+    CHECK(error_of(R"({"tracks": []})", format::json).find("expected an object of named tracks") != std::string::npos);
+    CHECK(error_of("42", format::json) == "in: expected a JSON object or array, got number");
+}
+
+TEST_CASE("JSON errors name the field down to the element, as a JSON path") {
+    const auto field_error = [](const std::string& key) {
+        return error_of(R"({"keys": [)" + key + "]}", format::json);
+    };
+    CHECK(field_error(R"({"time": 0, "quat": [1, 0, "x", 0]})") == "in: keys[0]: 'quat[2]': expected a number, got string \"x\"");
+    CHECK(field_error(R"({"time": 0, "quat": {"w": 1, "x": 0, "y": null, "z": 0}})") ==
+          "in: keys[0]: 'quat.y': expected a number, got null");
+    CHECK(field_error(R"({"time": 0, "quat": {"w": 1, "x": 0, "z": 0}})") ==
+          "in: keys[0]: 'quat' object: missing 'y': expected w x y z");
+    CHECK(field_error(R"({"time": 0, "axis": [0, 0, true], "angle": 90})") ==
+          "in: keys[0]: 'axis[2]': expected a number, got boolean");
+    CHECK(field_error(R"({"time": 0, "axis": [0, 0, 1], "angle": "90"})") ==
+          "in: keys[0]: 'angle': expected a number, got string \"90\"");
+    CHECK(field_error(R"({"time": 0, "rotvec": [0, [0], 0]})") == "in: keys[0]: 'rotvec[1]': expected a number, got array");
+    CHECK(field_error(R"({"time": 0, "euler": [{}, 0, 0]})") == "in: keys[0]: 'euler[0]': expected a number, got object");
+    CHECK(field_error(R"({"time": 0, "matrix": [[1, 0, 0], [0, 1, "0"], [0, 0, 1]]})") ==
+          "in: keys[0]: 'matrix[1][2]': expected a number, got string \"0\"");
+    CHECK(field_error(R"({"time": 0, "matrix": [[1, 0, 0], [0, 1], [0, 0, 1]]})") ==
+          "in: keys[0]: 'matrix[1]': expected an array of 3 numbers, got 2 elements");
+    CHECK(field_error(R"({"time": 0, "quat": [1, 0, 0, 0], "translation": [0, "1", 2]})") ==
+          "in: keys[0]: 'translation[1]': expected a number, got string \"1\"");
+    CHECK(field_error(R"({"frame": "3", "quat": [1, 0, 0, 0]})") == "in: keys[0]: 'frame': expected a number, got string \"3\"");
+}
+
+TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
+    const auto doc = read("{\"track\": \"a\", \"time\": 0, \"quat\": [1,0,0,0]}\n\n"
+                          "{\"track\": \"b\", \"time\": 0, \"rotvec\": [0,0,1]}\n",
+                          format::ndjson);
+    CHECK(doc.named);
+    CHECK(doc.tracks.size() == 2);
+    CHECK(doc.tracks[1].keys[0].at.line == 3);
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1}\n", format::ndjson).find("in:2: no rotation") == 0);
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{oops\n", format::ndjson).find("in:2:2: invalid JSON") == 0);
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n\n{\"time\": 1, \"quat\": [1,0,0,\"0\"]}\n", format::ndjson) ==
+          "in:3: 'quat[3]': expected a number, got string \"0\"");
+    CHECK(error_of("{\"track\": \"a\", \"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1, \"quat\": [1,0,0,0]}\n",
+                   format::ndjson) == "in:2: some lines have a 'track' and some do not: expected all or none");
+    CHECK(error_of("{\"track\": 7, \"time\": 0, \"quat\": [1,0,0,0]}\n", format::ndjson) ==
+          "in:1: 'track': expected a string, got number");
+}
+
+namespace {
+
+/// Every key of a document (bits of each number, via the shortest
+/// round-trip digits) and its track, or the message reading stops with.
+std::string dump(const std::string& text) {
+    try {
+        std::string out;
+        for (const auto& [t, keys] : read_json_keys(text).tracks)
+            for (const raw_key& k : keys) {
+                out += fmt::format("{} {} {} {} {} {} {} {} {} {} [{}]", t.name, t.at.path, static_cast<int>(t.settings.angles),
+                                   t.settings.euler ? t.settings.euler->name : "-", t.settings.key_fps, k.at.line, k.at.path,
+                                   k.time.value_or(-1), k.frame.value_or(-1), static_cast<int>(k.kind),
+                                   fmt::join(k.values, " "));
+                if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+                out += '\n';
+            }
+        return out;
+    } catch (const input_error& e) {
+        return std::string(e.what());
+    }
+}
+
+}  // namespace
+
+TEST_CASE("JSON: documents flat_json takes give the keys and messages nlohmann-json's reading gives") {
+    // Each document twice: as written, which flat_json takes, and with a
+    // member flat_json declines (an escaped string), which nlohmann-json reads.
+    flat_json flat;
+    for (const std::string doc : {
+             R"({"keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "rotvec": [0, 0, 1.5], "translation": [1, 2, 3]}]})",
+             R"({"fps": 30, "frames": [{"frame": 0, "time": -0, "euler": [10, 20, 30]}, {"frame": 3, "euler": [0, 0, 0]}],
+                 "euler": "ZYX", "angles": "radians", "quat_order": "xyzw"})",
+             R"({"quat_order": "xyzw", "keys": [{"time": 0, "quat": [0, 0, 0, 1]}, {"time": 1, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}}]})",
+             R"({"angles": "radians", "tracks": {"zeta": {"keys": [{"time": 0, "axis": [0, 0, 1], "angle": 1}]},
+                 "alpha": {"angles": "degrees", "fps": 12, "frames": [{"frame": 1, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]},
+                 "mid": [{"time": 2, "matrix": [[1, 0, 0, 4], [0, 1, 0, 5], [0, 0, 1, 6], [0, 0, 0, 1]]}]}})",
+             R"([{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 5e-1, "quat": [0, 1, 0, 0]}])",
+             R"({"tracks": {"a": {"keys": [{"time": 0, "quat": [1, 0, "x", 0]}]}}})",
+             R"({"tracks": {"b": {"keys": []}, "a": {"keys": 5}}})", R"({"tracks": {}})", R"({"tracks": []})",
+             R"({"tracks": {"a\u0001": {"keys": []}}})", R"({"keys": [], "frames": []})", R"({"other": 1})",
+             R"({"angles": "grads", "keys": []})", R"({"euler": "XXY", "keys": []})", R"({"euler": 5, "keys": []})",
+             R"({"quat_order": "wzyx", "keys": []})", R"({"fps": 0, "keys": []})", R"({"fps": "24", "keys": []})",
+             R"({"keys": [{"time": 0, "frame": 0, "quat": [1, 0, 0, 0]}]})", R"({"keys": [{"quat": [1, 0, 0, 0]}]})",
+             R"({"keys": [{"time": 0, "matrix": [[1, 0, 0], [0, 1, 0]]}]})", R"({"keys": [7]})", R"({"keys": [null]})",
+         }) {
+        CAPTURE(doc);
+        const std::string declined = doc.front() == '{' ? "{\"note\": \"\\u00e9\", " + doc.substr(1)
+                                                        : "[{\"note\": \"\\u00e9\", " + doc.substr(2);
+        CHECK(flat.parse(doc) == (doc.find('\\') == std::string::npos));
+        CHECK(!flat.parse(declined));
+        CHECK(dump(doc) == dump(declined));
+    }
+    // Not blind to a track's own settings; and tracks keep the document's
+    // order (the spec's "in input order"), by either parser.
+    const std::string two = R"({"tracks": {"b": [{"time": 0, "quat": [1, 0, 0, 0]}], "a": {"fps": 12, "keys": [{"frame": 0, "quat": [1, 0, 0, 0]}]}}})";
+    const std::string two_declined = R"({"note": "\u00e9", )" + two.substr(1);
+    for (const std::string& order : {dump(two), dump(two_declined)}) {
+        CHECK(order.rfind("b ", 0) == 0);
+        CHECK(order.find("\na ") != std::string::npos);
+        CHECK(order.find(" 12 ") != std::string::npos);
+    }
+}
+
+namespace {
+
+std::string key_line(const std::string& track, const key_settings& s, const raw_key& k) {
+    std::string line = fmt::format("{} {} {} {} {} {} {} {} [{}]", track, static_cast<int>(s.angles),
+                                   s.euler ? s.euler->name : "-", s.key_fps, k.at.path, k.time.value_or(-1),
+                                   k.frame.value_or(-1), static_cast<int>(k.kind), fmt::join(k.values, " "));
+    if (k.translation) line += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+    return line + '\n';
+}
+
+/// A JSON document's keys as read_json gives them, with their tracks'
+/// names and settings; or its error.
+std::string whole_keys(const std::string& text) {
+    try {
+        const raw_json doc = read_json_keys(text);
+        std::string out = doc.named ? "named\n" : "";
+        for (const auto& [t, keys] : doc.tracks)
+            for (const raw_key& k : keys) out += key_line(t.name, t.settings, k);
+        return out;
+    } catch (const input_error& e) {
+        return e.what();
+    }
+}
+
+/// The same from the streaming reader (parsed ahead on other threads
+/// after the first 1024 keys, where the document has one track); where it
+/// throws, the keys before and "declined".
+std::string streamed_keys(const std::string& text, bool ahead = false) {
+    std::istringstream in(text);
+    std::ostringstream err;
+    warnings warn(err, "in");
+    read_options o;
+    o.source = "in";
+    std::string lines, name;
+    raw_key k;
+    try {
+        const auto reader = ahead ? make_key_reader(in, format::json, o, warn, [] { return true; })
+                                  : make_key_reader(in, format::json, o, warn);
+        while (reader->next(name, k)) lines += key_line(name, reader->settings(), k);
+        return (reader->named() ? "named\n" : "") + lines;
+    } catch (const error&) {
+        return lines + "declined";
+    }
+}
+
+}  // namespace
+
+TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to read whole") {
+    const std::string k = R"({"time": 0, "quat": [1, 0, 0, 0]})", k2 = R"({"time": 1, "quat": [0, 1, 0, 0]})";
+    // Settings before keys, as keyrot writes: streamed, in every shape.
+    for (const std::string& doc : std::vector<std::string>{
+             R"({"angles": "radians", "euler": "zyx", "quat_order": "xyzw", "keys": [
+                 {"time": 0, "quat": [0, 0, 1, 0]}, {"time": 1, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}},
+                 {"frame": 48, "axis": [0, 0, 1], "angle": 1.5, "translation": [1, 2, 3]}, {"time": 3, "rotvec": [0, 1, 0]},
+                 {"time": 4, "euler": [1, 2, 3]}, {"time": 5, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]})",
+             R"({"fps": 30, "method": "slerp", "rep": "quat", "frames": [{"frame": 3, "time": 0.1, "quat": [1, 0, 0, 0]},
+                 {"frame": 4, "time": -0, "quat": [1e-3, 1E+2, -0, 0.5]}]})",
+             R"({"angles": "radians", "tracks": {"zeta": {"keys": [{"time": 0, "axis": [0, 0, 1], "angle": 1}]},
+                 "alpha": {"angles": "degrees", "fps": 12, "frames": [{"frame": 1, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]},
+                 "mid": [{"time": 2, "matrix": [[1, 0, 0, 4], [0, 1, 0, 5], [0, 0, 1, 6], [0, 0, 0, 1]]}]}})",
+             "[" + k + ",\r\n\t" + k2 + "]", " \n[ " + k + " ] \n",
+             R"({"note": {"a": [1, 2, {"b": null}], "c": "x,]} "}, "keys": [)" + k + "], \"after\": [true, false, \"{[\"]}",
+             R"({"quat_order": "xyzw", "tracks": {"a": {"quat_order": "wxyz", "tracks": 5, "keys": [)" + k + "]}, \"b\": [" + k2 +
+                 "], \"\": [" + k + "]}}",
+         }) {
+        CAPTURE(doc);
+        const std::string streamed = streamed_keys(doc);
+        CHECK(streamed == whole_keys(doc));
+    }
+    // What read_json reads only once it has the whole text, reads otherwise
+    // than a walk in order would, or reports as an error: declined.
+    for (const std::string& doc : std::vector<std::string>{
+             R"({"keys": [)" + k + R"(], "angles": "radians"})", R"({"tracks": {"a": [)" + k + R"(]}, "fps": 12})",
+             R"({"tracks": {"a": {"keys": [)" + k + R"(], "euler": "xyz"}}})", R"({"keys": [)" + k + R"(], "tracks": {"a": [)" + k + "]}}",
+             R"({"tracks": {"a": [)" + k + R"(]}, "keys": [)" + k + "]}", R"({"keys": [)" + k + R"(], "frames": [)" + k + "]}",
+             R"({"keys": [)" + k + R"(], "keys": [)" + k + "]}", R"({"tracks": {"a": [)" + k + R"(], "a": [)" + k + "]}}",
+             R"({"keys": []})", R"({"tracks": {}})", R"({"tracks": {"a": {"fps": 2}}})", R"({"other": 1})", R"({"keys": 5})",
+             R"({"keys": [)" + k + "]} x", R"({"keys": [)" + k, R"({"keys": [)" + k + ",]}", R"({"keys": [)" + k + " " + k2 + "]}",
+             "\xEF\xBB\xBF[" + k + "]", R"({"note": "\u00e9", "keys": [)" + k + "]}", R"({"tracks": {"\u00e9": [)" + k + "]}}",
+             R"({"note": [[[[[[[[[[1]]]]]]]]]], "keys": [)" + k + "]}", R"({"keys": [{"time": 0, "quat": [1, 0, 0]}]})",
+             R"({"tracks": {"a\u0001": [)" + k + "]}}", "42", "\"keys\"", "", "[" + k + ", " + k2 + ", 7]",
+             "[" + k + "]\n" + std::string(1, '\0') + "x", "[" + k + "]" + std::string(1, '\0'),
+         }) {
+        CAPTURE(doc);
+        CHECK(streamed_keys(doc).ends_with("declined"));
+    }
+    // Read in blocks of 64 KB: a block ends in each place of a setting, and of a key.
+    std::string keys;
+    for (int i = 0; i < 1400; ++i)
+        keys += fmt::format("{}{{\"time\": {}, \"quat\": [{}, 0.25, -0.5, 1e-3]}}", i ? ",\n " : "", i, i * 0.1);
+    for (std::size_t pad = 65500; pad < 65560; ++pad) {
+        const std::string doc = "{" + std::string(pad, ' ') + R"("quat_order": "xyzw", "keys": [)" + keys + "]}";
+        CAPTURE(pad);
+        const std::string streamed = streamed_keys(doc);
+        CHECK(streamed.find("\n 0 - 24 keys[1399] 1399 -1 0 [") != std::string::npos);
+        CHECK(streamed == whole_keys(doc));
+        if (pad % 20 == 0) CHECK(streamed_keys(doc, true) == streamed);
+    }
+    // Parsed ahead, each track's keys keep its settings and names.
+    const std::string two = R"({"tracks": {"a": {"quat_order": "xyzw", "keys": [)" + keys +
+                            R"(]}, "b": {"angles": "radians", "fps": 30, "keys": [)" + keys + "]}}}";
+    CHECK(streamed_keys(two, true).find("\nb 1 - 30 tracks.b.keys[1399] 1399 ") != std::string::npos);
+    CHECK(streamed_keys(two, true) == whole_keys(two));
+    // Parsed ahead, an error still comes after the keys before it (the
+    // document is then read whole, to say what is wrong).
+    const std::string bad = "[" + keys + R"(, {"time": 1400, "quat": [1, 0, 0]}])";
+    CHECK(streamed_keys(bad, true) == streamed_keys("[" + keys + "]") + "declined");
+    CHECK(whole_keys(bad) == "in: [1400]: 'quat': expected an array of 4 numbers, got 3 elements");
+}
+
+TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-json's reading gives") {
+    // Each line twice: as written, which flat_json takes, and with a member
+    // flat_json declines (an escaped string), which nlohmann-json reads.
+    const auto dump_lines = [](const std::string& text) {
+        try {
+            std::string out;
+            for (const auto& [name, k] : keyrot::test::read_keys(text, format::ndjson))
+                out += fmt::format("{} {} {} {} {} [{}] {}\n", name, k.at.line, k.time.value_or(-1), k.frame.value_or(-1),
+                                   static_cast<int>(k.kind), fmt::join(k.values, " "),
+                                   k.translation ? fmt::format("{} {} {}", k.translation->x, k.translation->y, k.translation->z) : "");
+            return out;
+        } catch (const input_error& e) {
+            return std::string(e.what());
+        }
+    };
+    flat_json line;
+    for (const std::string key : {
+             R"("time": 0.5, "quat": [0.5, -0.5, 0.5, -0.5])", R"("frame": 3, "time": -0, "quat": {"w": 1, "x": 0, "y": -0, "z": 0})",
+             R"("time": 1e-3, "axis": [0, 0, 1], "angle": 90, "translation": [1, -2.5, 3e2])",
+             R"("time": 2, "rotvec": [0.1, 0.2, 0.3])", R"("time": 2, "euler": [10, 20, 30])",
+             R"("time": 2, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]])",
+             R"("time": 2, "matrix": [[1, 0, 0, 5], [0, 1, 0, 6], [0, 0, 1, 7], [0, 0, 0, 1]])",
+             R"("time": 0, "quat": [1, 0, "x", 0])", R"("time": 0, "quat": {"w": 1, "x": 0, "y": null, "z": 0})",
+             R"("time": 0, "quat": {"w": 1, "x": 0, "z": 0})", R"("time": 0, "axis": [0, 0, true], "angle": 90)",
+             R"("time": 0, "axis": [0, 0, 1], "angle": "90")", R"("time": 0, "axis": [0, 0, 1])", R"("time": 0, "angle": 9)",
+             R"("time": 0, "rotvec": [0, [0], 0])", R"("time": 0, "euler": [{}, 0, 0])",
+             R"("time": 0, "matrix": [[1, 0, 0], [0, 1, "0"], [0, 0, 1]])", R"("time": 0, "matrix": [[1, 0, 0], [0, 1], [0, 0, 1]])",
+             R"("time": 0, "matrix": 5)", R"("time": 0, "matrix": [[1]])", R"("time": 0, "quat": [1, 0, 0, 0], "translation": [0, "1", 2])",
+             R"("frame": "3", "quat": [1, 0, 0, 0])", R"("quat": [1, 0, 0, 0])", R"("time": 0, "quat": [1, 0, 0, 0], "rotvec": [0, 0, 0])",
+             R"("time": 0)", R"("time": 0, "quat": [1, 0, 0])", R"("time": "0", "quat": [1, 0, 0, 0])",
+             R"("track": "hip", "time": 0, "quat": [1, 0, 0, 0])", R"("track": 7, "time": 0, "quat": [1, 0, 0, 0])",
+             R"("track": "a\tb", "time": 0, "quat": [1, 0, 0, 0])",
+         }) {
+        CAPTURE(key);
+        const std::string taken = "{" + key + "}", declined = "{\"note\": \"\\u00e9\", " + key + "}";
+        CHECK(line.parse(taken) == (key.find('\\') == std::string::npos));
+        CHECK(!line.parse(declined));
+        CHECK(dump_lines(taken + "\n") == dump_lines(declined + "\n"));
+        CHECK(dump_lines("\n" + declined + "\n" + taken + "\n") == dump_lines("\n" + taken + "\n" + declined + "\n"));
+    }
+    // The dump is not blind: the two lines differ when a number does.
+    CHECK(dump_lines(R"({"time": 0, "quat": [1, 0, 0, 0]})") != dump_lines(R"({"time": 0, "quat": [1, -0.0, 0, 0]})"));
+}
+
