@@ -9,10 +9,10 @@
 #include <new>
 #include <sstream>
 
-#include "keyrot/app.hpp"
 #include "cli.hpp"
-#include "keyrot/error.hpp"
 #include "io/output.hpp"
+#include "keyrot/app.hpp"
+#include "keyrot/error.hpp"
 
 namespace {
 

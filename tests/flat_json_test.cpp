@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "io/fast/flat_json.hpp"
 #include "json_same.hpp"
-#include "fast/flat_json.hpp"
 
 using keyrot::flat_json;
 using keyrot::test::same_json;

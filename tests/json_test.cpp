@@ -1,5 +1,6 @@
 // Reading JSON documents and NDJSON lines, whole and streamed.
 #include "io/io_json.hpp"
+#include "io/open.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -9,9 +10,9 @@
 #include <sstream>
 
 #include "helpers.hpp"
+#include "io/fast/flat_json.hpp"
+#include "io/fast/json_stream.hpp"
 #include "reading.hpp"
-#include "fast/flat_json.hpp"
-#include "fast/json_stream.hpp"
 
 using namespace keyrot;
 using keyrot::test::error_of;

@@ -1,5 +1,6 @@
 // Keys parsed ahead on other threads: the same keys and errors, in order.
-#include "fast/read_ahead.hpp"
+#include "io/fast/read_ahead.hpp"
+#include "io/open.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

@@ -11,6 +11,8 @@
 #include "io/document.hpp"
 #include "io/io.hpp"
 #include "io/io_json.hpp"
+#include "io/open.hpp"
+#include "io/table_writer.hpp"
 
 namespace keyrot::test {
 

@@ -5,7 +5,6 @@
 #include <functional>
 #include <optional>
 
-#include "keyrot/frame.hpp"
 #include "keyrot/interpolate.hpp"
 #include "keyrot/track.hpp"
 

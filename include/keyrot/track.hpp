@@ -1,6 +1,7 @@
 #pragma once
-// Keys and tracks: what the readers produce (raw_key, as written in the file)
-// and what the rest of keyrot works on (key, with a unit quaternion).
+// Keys and tracks: what the readers produce (raw_key, as written in the file),
+// what the rest of keyrot works on (key, with a unit quaternion), and the
+// rows made of them (sample).
 // make_key is the one place where raw values become rotations, so every
 // input format is validated the same way.
 #include <array>
@@ -68,6 +69,16 @@ struct track {
     std::optional<euler_seq> euler;  ///< the sequence in force for this track
     std::vector<key> keys;
     double key_fps = 24;  ///< the rate its keys' frame numbers count at
+};
+
+/// One output row, what the sampler hands the writers: a resampled frame
+/// (frame = k) or a converted key.
+struct sample {
+    double time = 0;
+    std::optional<double> frame;
+    quat rotation;
+    std::optional<vec3> translation;
+    bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
 };
 
 /// One key converted and validated on its own: rotation to a unit

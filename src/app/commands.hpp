@@ -1,8 +1,10 @@
 #pragma once
-// The commands, a file each in src/app, which run() calls.
+// The commands, a file each (src/app/*_command.cpp), which run() calls.
 #include <iosfwd>
 
-#include "keyrot/app.hpp"
+namespace keyrot {
+struct options;
+}
 
 namespace keyrot::detail {
 

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "io/io_json.hpp"
+#include "io/open.hpp"
 
 namespace keyrot {
 namespace {

@@ -9,9 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "keyrot/format.hpp"
-#include "keyrot/frame.hpp"
 #include "io/layout.hpp"
+#include "keyrot/format.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {
@@ -62,15 +61,6 @@ public:
     virtual const key_settings& settings() const = 0;
 };
 
-/// For format::csv or format::ndjson, or format::json where the document
-/// allows (make_json_reader). Warnings (unknown columns) go to `warn`. With
-/// `parse_ahead`, keys are parsed on threads of their own ahead of the
-/// caller once more than a thousand have come and `parse_ahead()` (asked
-/// once, then, on the caller's thread) says it pays; the caller must not
-/// use `in` meanwhile.
-std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn,
-                                            std::function<bool()> parse_ahead = nullptr);
-
 /// Frame / key time columns of a table.
 enum class time_columns {
     frame_and_time,  ///< resample: both
@@ -92,35 +82,21 @@ struct table_info {
     bool operator==(const table_info&) const = default;
 };
 
-/// Writes rows one at a time into `out`. begin_track comes before each
-/// track's rows (also for a single unnamed track); finish closes the document.
-class table_writer {
+/// A table written row by row into -o FILE (a temporary file that replaces
+/// it at finish(), and is removed if finish() is never reached) or into a
+/// stream. begin_track comes before each track's rows (also for a single
+/// unnamed track). Large outputs are formatted on other threads and written
+/// in chunks as they fill.
+class table_output {
 public:
-    virtual ~table_writer() = default;
+    virtual ~table_output() = default;
     virtual void begin_track(const std::string& name, bool has_translation) = 0;
     virtual void row(const sample& s) = 0;
+    /// Closes the document and puts out what is left (then commits the file).
     virtual void finish() = 0;
-    /// For formatting rows on several threads: a writer of the same rows into
-    /// `out` that writes nothing else (no header, nothing at finish), or
-    /// nullptr where a row's text depends on the rows before it (JSON).
-    virtual std::unique_ptr<table_writer> row_writer(std::string& out) const = 0;
 };
-
-/// A row's rotation values; Euler output warns once about gimbal lock.
-rotation_values row_values(const sample& s, const write_options& opts, warnings& warn);
 
 /// `text` as a JSON string literal, quotes included. Throws input_error for invalid UTF-8.
 std::string json_quote(std::string_view text);
-
-/// What an output states about itself, so that it reads back with the
-/// same meaning and no flags, as the members of a JSON object:
-/// `"fps": 24, "method": "slerp", "rep": "quat", "angles": "degrees", "quat_order": "wxyz"`
-/// (fps and method when known, euler and quat_order where the rep has them).
-/// A JSON document's first fields, an NDJSON header line, a CSV "# keyrot" line.
-std::string settings_members(const table_info& info, const write_options& opts);
-
-/// Euler output warns once about gimbal lock through `warn`.
-std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,
-                                          const write_options& opts, warnings& warn);
 
 }  // namespace keyrot

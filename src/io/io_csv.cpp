@@ -11,8 +11,8 @@
 #include <optional>
 #include <utility>
 
+#include "io/fast/flat_json.hpp"
 #include "io/json_keys.hpp"
-#include "fast/flat_json.hpp"
 
 namespace keyrot {
 namespace {

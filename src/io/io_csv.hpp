@@ -6,6 +6,7 @@
 
 #include "io/io.hpp"
 #include "io/line_keys.hpp"
+#include "io/table_writer.hpp"
 
 namespace keyrot {
 

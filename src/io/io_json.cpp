@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "fast/flat_json.hpp"
+#include "io/fast/flat_json.hpp"
 #include "io/json_keys.hpp"
 
 namespace keyrot {

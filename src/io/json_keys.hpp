@@ -12,9 +12,9 @@
 #include <string>
 #include <string_view>
 
-#include "keyrot/error.hpp"
 #include "io/io.hpp"
 #include "io/layout.hpp"
+#include "keyrot/error.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot::detail {

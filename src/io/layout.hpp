@@ -12,9 +12,9 @@
 #include <string>
 #include <string_view>
 
+#include "ground/text.hpp"
 #include "keyrot/convert.hpp"
 #include "keyrot/quat.hpp"
-#include "ground/text.hpp"
 
 namespace keyrot {
 

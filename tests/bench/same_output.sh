@@ -49,6 +49,14 @@ done
 both slerp 1,0,0,0 0,0,0,1 --steps 4
 both slerp 0,0,1,90 0,1,0,90 --from axis-angle --rep euler --out-euler XYZ -t 0.25 -t 0.5
 both convert "$root/data/walk.csv" "$root/data/turntable.csv" --output-dir out --to json
+# Outputs large enough for the formatting threads.
+both slerp 1,0,0,0 0,0,0.6,0.8 --steps 30000 --rep euler --out-euler ZYX
+both slerp 1,0,0,0 0,0,0.6,0.8 --steps 30000 -o out.json
+for f in "$root"/data/*; do
+    both resample "$f" --fps 5000
+    both resample "$f" --fps 3000 --rep matrix4 -o out.ndjson
+    both resample "$f" --fps 3000 --rep quat --to json
+done
 
 # The conformance cases: a keyrot that runs both and logs any difference.
 cat >"$work/keyrot-both" <<EOF

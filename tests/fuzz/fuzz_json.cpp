@@ -11,10 +11,11 @@
 
 #include "../json_same.hpp"
 #include "check.hpp"
-#include "fast/flat_json.hpp"
 #include "io/document.hpp"
+#include "io/fast/flat_json.hpp"
 #include "io/io.hpp"
 #include "io/io_json.hpp"
+#include "io/open.hpp"
 
 namespace {
 

@@ -17,9 +17,9 @@
 #include <string_view>
 #include <vector>
 
+#include "io/fast/flat_json.hpp"
+#include "io/fast/json_stream.hpp"
 #include "io/json_keys.hpp"
-#include "fast/flat_json.hpp"
-#include "fast/json_stream.hpp"
 
 namespace keyrot {
 namespace {

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "fast/read_ahead.hpp"
-#include "fast/thread_start.hpp"
+#include "ground/thread_start.hpp"
+#include "io/fast/read_ahead.hpp"
 
 namespace keyrot {
 namespace {

@@ -1,4 +1,4 @@
-#include "fast/flat_json.hpp"
+#include "io/fast/flat_json.hpp"
 
 #include <charconv>
 #include <cmath>

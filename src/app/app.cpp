@@ -1,5 +1,6 @@
-#include "app/commands.hpp"
 #include "keyrot/app.hpp"
+
+#include "app/commands.hpp"
 
 namespace keyrot {
 

@@ -19,9 +19,9 @@
 
 #include "app/commands.hpp"
 #include "app/plan.hpp"
-#include "fast/row_pipeline.hpp"
-#include "fast/thread_start.hpp"
+#include "ground/thread_start.hpp"
 #include "io/document.hpp"
+#include "io/open.hpp"
 #include "io/output.hpp"
 
 namespace keyrot::detail {
@@ -209,7 +209,7 @@ bool scan_json(const transform_plan& p, const input_source& src, document_facts&
 /// as pass 1 checks them. Returns the facts seen, or nothing when a track
 /// comes back after another one began.
 std::optional<document_facts> stream_rows(const transform_plan& p, const input_source& src,
-                                          const document_facts* known, row_pipeline& rows, warnings& warn) {
+                                          const document_facts* known, table_output& rows, warnings& warn) {
     const auto stream = src.open();
     std::size_t keys = 0, rows_put = 0;
     const auto row = [&](const sample& s) { ++rows_put, rows.row(s); };
@@ -244,7 +244,7 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
 }
 
 /// The tracks of an input read whole.
-void whole_rows(const transform_plan& p, const document& doc, row_pipeline& rows) {
+void whole_rows(const transform_plan& p, const document& doc, table_output& rows) {
     const auto row = [&](const sample& s) { rows.row(s); };
     for (const track& t : doc.tracks) {
         bool translation = false;
@@ -277,21 +277,14 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
             guess.add(name, reader->settings().euler, reader->settings().key_fps, make_key(raw, reader->settings(), warn));
             guess.named = reader->named();
         }
-        const write_options wopts = writing(p.flags, guess.tracks.front().euler);
-        chunked_output sink(p.target, out);
-        const auto writer = make_writer(p.out, sink.text(), p.rows->table(guess), wopts, warn);
-        std::optional<document_facts> seen;
-        {
-            row_pipeline rows(*writer, sink, formatting_threads());
-            seen = stream_rows(p, src, nullptr, rows, warn);
-            rows.finish();
-        }
+        const auto table =
+            open_table(p.out, p.target, out, p.rows->table(guess), writing(p.flags, guess.tracks.front().euler), warn);
+        const std::optional<document_facts> seen = stream_rows(p, src, nullptr, *table, warn);
         if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
         p.rows->check(*seen, src.source());
         for (const auto& t : seen->tracks)
             if (t.translation != t.first.translation.has_value()) return false;
-        writer->finish();
-        sink.finish();
+        table->finish();
     } catch (const error&) {
         return false;  // the two passes say what is wrong, in their order
     }
@@ -316,17 +309,10 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
         d = facts_of(*whole);
     }
     p.rows->check(d, src.source());
-    const write_options wopts = writing(p.flags, d.tracks.front().euler);
-    chunked_output sink(p.target, out);
-    const auto writer = make_writer(p.out, sink.text(), p.rows->table(d), wopts, warn);
-    {
-        row_pipeline rows(*writer, sink, formatting_threads());
-        if (whole) whole_rows(p, *whole, rows);
-        else stream_rows(p, src, &d, rows, warn);
-        rows.finish();
-    }
-    writer->finish();
-    sink.finish();
+    const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing(p.flags, d.tracks.front().euler), warn);
+    if (whole) whole_rows(p, *whole, *table);
+    else stream_rows(p, src, &d, *table, warn);
+    table->finish();
 }
 
 /// Where --output-dir puts the output of input `name`: its file name, with

@@ -7,9 +7,9 @@
 
 #include "app/commands.hpp"
 #include "app/plan.hpp"
-#include "fast/row_pipeline.hpp"
 #include "ground/text.hpp"
 #include "io/layout.hpp"
+#include "io/open.hpp"
 
 namespace keyrot::detail {
 
@@ -73,20 +73,17 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     info.method = to_string(o.how);
     // Rows are written as they are made: --steps may ask for millions.
     const std::optional<std::string> target = output_path(o);
-    chunked_output sink(target, out);
     const format to = o.to.value_or(target ? format_of_path(*target).value_or(format::csv) : format::csv);
-    const auto writer = make_writer(to, sink.text(), info, writing(o, t.euler), warn0);
-    writer->begin_track("", false);
+    const auto table = open_table(to, target, out, info, writing(o, t.euler), warn0);
+    table->begin_track("", false);
     const auto row = [&](double h) {
         const quat q = h == 0 ? curve.at_key(0) : h == 1 ? curve.at_key(1) : curve.at(0, h);
-        writer->row(sample{h, std::nullopt, q, std::nullopt});
-        sink.maybe_flush();
+        table->row(sample{h, std::nullopt, q, std::nullopt});
     };
     for (double h : o.ts) row(h);
     if (o.steps)
         for (int i = 0; i <= *o.steps; ++i) row(static_cast<double>(i) / *o.steps);
-    writer->finish();
-    sink.finish();
+    table->finish();
     return 0;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
-// Internal to resample and convert (src/transform.cpp): how output rows get
-// formatted, on other threads once there are many, and written out.
+// How output rows get formatted, on other threads once there are many, and
+// written out: what open_table (io.hpp) puts a table through.
 #include <algorithm>
 #include <condition_variable>
 #include <cstddef>
@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "keyrot/error.hpp"
-#include "io/io.hpp"
+#include "ground/thread_start.hpp"
 #include "io/output.hpp"
-#include "fast/thread_start.hpp"
+#include "io/table_writer.hpp"
+#include "keyrot/error.hpp"
 
 namespace keyrot::detail {
 

@@ -1,0 +1,56 @@
+#include "io/open.hpp"
+
+#include "io/fast/json_stream.hpp"
+#include "io/fast/read_ahead.hpp"
+#include "io/fast/row_pipeline.hpp"
+#include "io/io_csv.hpp"
+#include "io/io_json.hpp"
+
+namespace keyrot {
+
+std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn,
+                                            std::function<bool()> parse_ahead) {
+    std::unique_ptr<line_key_reader> reader = f == format::json     ? make_json_reader(in, opts, warn)
+                                              : f == format::ndjson ? make_ndjson_reader(in, opts, warn)
+                                                                    : make_csv_reader(in, opts, warn);
+    if (parse_ahead) return read_ahead(std::move(reader), std::move(parse_ahead));
+    return reader;
+}
+
+std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,
+                                          const write_options& opts, warnings& warn) {
+    if (f == format::csv) return make_csv_writer(out, info, opts, warn);
+    return make_json_writer(out, info, opts, warn, f == format::ndjson);
+}
+
+namespace {
+
+/// A writer's rows through the row pipeline into chunked output.
+class piped_table final : public table_output {
+public:
+    piped_table(format f, const std::optional<std::string>& path, std::ostream& out, const table_info& info,
+                const write_options& opts, warnings& warn)
+        : sink_(path, out), writer_(make_writer(f, sink_.text(), info, opts, warn)),
+          rows_(*writer_, sink_, detail::formatting_threads()) {}
+    void begin_track(const std::string& name, bool has_translation) override { rows_.begin_track(name, has_translation); }
+    void row(const sample& s) override { rows_.row(s); }
+    void finish() override {
+        rows_.finish();
+        writer_->finish();
+        sink_.finish();
+    }
+
+private:
+    detail::chunked_output sink_;
+    std::unique_ptr<table_writer> writer_;
+    detail::row_pipeline rows_;
+};
+
+}  // namespace
+
+std::unique_ptr<table_output> open_table(format f, const std::optional<std::string>& path, std::ostream& out,
+                                         const table_info& info, const write_options& opts, warnings& warn) {
+    return std::make_unique<piped_table>(f, path, out, info, opts, warn);
+}
+
+}  // namespace keyrot
