@@ -12,7 +12,9 @@
 #include <utility>
 
 #include "io/fast/flat_json.hpp"
+#include "io/fast/number_writer.hpp"
 #include "io/json_keys.hpp"
+#include "io/line_reader.hpp"
 
 namespace keyrot {
 namespace {

@@ -44,75 +44,13 @@ struct rotation_values {
 /// `translation` is used by rep::matrix4 only (zero when absent).
 rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts);
 
-/// Writes v at `out` (room for max_number_chars) in the shortest form that
-/// reads back to the same double, or rounded to `precision` decimals without
-/// trailing zeros; returns the end. Never "-0". Throws std::logic_error for
-/// NaN or infinity (a bug, never printed).
-char* write_number(char* out, double v, std::optional<int> precision);
-inline constexpr std::size_t max_number_chars = 330;  // "{:.17f}" of -1.8e308 has 327
-/// write_number, appended to `out`.
+/// Appends v in the shortest form that reads back to the same double, or
+/// rounded to `precision` decimals without trailing zeros: append_number(s,
+/// 0.1 + 0.2, {}) appends "0.30000000000000004"; (s, 2.50, 3) appends "2.5".
+/// Never "-0". Throws std::logic_error for NaN or infinity (a bug, never printed).
 void append_number(std::string& out, double v, std::optional<int> precision);
 
-/// The text of an output row, gathered on the stack and appended to `out`
-/// in large pieces: appending to a std::string piece by piece costs more
-/// than printing the numbers. Call flush() at the end of the row.
-class row_text {
-public:
-    explicit row_text(std::string& out) noexcept : out_(out) {}
-    row_text(const row_text&) = delete;
-    row_text& operator=(const row_text&) = delete;
 
-    void put(char c) {
-        if (end_ == std::end(buf_)) flush();
-        *end_++ = c;
-    }
-    void put(std::string_view text) {
-        if (text.size() > room()) {
-            flush();
-            if (text.size() > room()) return (void)out_.append(text);
-        }
-        end_ = std::copy(text.begin(), text.end(), end_);
-    }
-    void number(double v, std::optional<int> precision) {
-        if (room() < max_number_chars) flush();
-        end_ = write_number(end_, v, precision);
-    }
-    void flush() {
-        out_.append(buf_, static_cast<std::size_t>(end_ - buf_));  // (pointer, length): not the iterator overload
-        end_ = buf_;
-    }
 
-private:
-    std::size_t room() const noexcept { return static_cast<std::size_t>(std::end(buf_) - end_); }
-
-    std::string& out_;
-    char buf_[4096];
-    char* end_ = buf_;
-};
-
-/// Reads a stream line by line in large chunks, for the line-based readers:
-/// '\n' ends a line, a '\r' before it is dropped, and a UTF-8 byte-order
-/// mark at the start is skipped. A line may be longer than a chunk, but not
-/// than `max_line` bytes: next() then throws input_error naming `source`
-/// and the line.
-class line_reader {
-public:
-    line_reader(std::istream& in, std::size_t max_line, std::string source);
-    /// The next line (valid until the next call), or false at the end.
-    /// number() is its 1-based number.
-    bool next(std::string_view& line);
-    std::size_t number() const noexcept { return number_; }
-
-private:
-    bool fill();  // reads more; false at the end of the stream
-
-    std::istream& in_;
-    std::size_t max_line_;
-    std::string source_;
-    std::string buf_;
-    std::size_t begin_ = 0, end_ = 0;  // unread bytes in buf_
-    std::size_t number_ = 0;
-    bool at_start_ = true, at_end_ = false;
-};
 
 }  // namespace keyrot

@@ -1,0 +1,35 @@
+#pragma once
+// Lines of a stream, for the line-based readers.
+#include <cstddef>
+#include <istream>
+#include <string>
+#include <string_view>
+
+namespace keyrot {
+
+/// Reads a stream line by line in large chunks, for the line-based readers:
+/// '\n' ends a line, a '\r' before it is dropped, and a UTF-8 byte-order
+/// mark at the start is skipped. A line may be longer than a chunk, but not
+/// than `max_line` bytes: next() then throws input_error naming `source`
+/// and the line.
+class line_reader {
+public:
+    line_reader(std::istream& in, std::size_t max_line, std::string source);
+    /// The next line (valid until the next call), or false at the end.
+    /// number() is its 1-based number.
+    bool next(std::string_view& line);
+    std::size_t number() const noexcept { return number_; }
+
+private:
+    bool fill();  // reads more; false at the end of the stream
+
+    std::istream& in_;
+    std::size_t max_line_;
+    std::string source_;
+    std::string buf_;
+    std::size_t begin_ = 0, end_ = 0;  // unread bytes in buf_
+    std::size_t number_ = 0;
+    bool at_start_ = true, at_end_ = false;
+};
+
+}  // namespace keyrot

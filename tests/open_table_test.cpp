@@ -1,0 +1,112 @@
+// open_table: the rows of a large output, formatted on other threads and
+// written in chunks, are the bytes the writer gives on one thread.
+#include "io/open.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "helpers.hpp"
+
+using namespace keyrot;
+
+namespace {
+
+/// Tracks of `rows` frames each, with and without translations.
+std::vector<std::vector<sample>> tracks_of(std::size_t count, std::size_t rows) {
+    std::vector<std::vector<sample>> tracks(count);
+    for (std::size_t t = 0; t < count; ++t)
+        for (std::size_t i = 0; i < rows; ++i) {
+            const double a = 0.001 * static_cast<double>(i + t);
+            std::optional<vec3> translation;
+            if (t % 2 == 0) translation = vec3{a, -a, 1};
+            tracks[t].push_back({static_cast<double>(i) / 24, static_cast<double>(i),
+                                 quat{std::cos(a), 0, 0, std::sin(a)}, translation});
+        }
+    return tracks;
+}
+
+/// The table written by one writer on this thread, the reference.
+std::string direct(format f, const table_info& info, const write_options& w, const std::vector<std::vector<sample>>& tracks) {
+    std::string out;
+    std::ostringstream err;
+    warnings warn(err, "in");
+    const auto writer = make_writer(f, out, info, w, warn);
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+        writer->begin_track("track " + std::to_string(t), tracks[t].front().translation.has_value());
+        for (const sample& s : tracks[t]) writer->row(s);
+    }
+    writer->finish();
+    return out;
+}
+
+std::string through_table(format f, const std::optional<std::string>& path, const table_info& info,
+                          const write_options& w, const std::vector<std::vector<sample>>& tracks) {
+    std::ostringstream out, err;
+    warnings warn(err, "in");
+    const auto table = open_table(f, path, out, info, w, warn);
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+        table->begin_track("track " + std::to_string(t), tracks[t].front().translation.has_value());
+        for (const sample& s : tracks[t]) table->row(s);
+    }
+    table->finish();
+    return out.str();
+}
+
+std::string file_text(const std::string& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+}  // namespace
+
+TEST_CASE("open_table: the same bytes as the writer alone, small or large, to a stream or a file") {
+    table_info info;
+    info.named = true;
+    info.translation = true;
+    info.fps = 24;
+    write_options w;
+    w.representation = rep::quat;
+    const auto dir = std::filesystem::temp_directory_path() / "keyrot_open_table_test";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    // 10 rows stay on this thread; 3 x 50,000 rows cross batches, tracks
+    // begin inside batches, and the output passes several chunks.
+    for (const std::size_t rows : {std::size_t{10}, std::size_t{50000}}) {
+        const auto tracks = tracks_of(3, rows);
+        for (const format f : {format::csv, format::json, format::ndjson}) {
+            CAPTURE(rows);
+            CAPTURE(to_string(f));
+            const std::string want = direct(f, info, w, tracks);
+            CHECK(through_table(f, std::nullopt, info, w, tracks) == want);
+            const std::string path = (dir / "out").string();
+            CHECK(through_table(f, path, info, w, tracks).empty());
+            CHECK(file_text(path) == want);
+        }
+    }
+    std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("open_table: a table never finished leaves no file, and its file is not touched") {
+    const auto dir = std::filesystem::temp_directory_path() / "keyrot_open_table_unfinished";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "out.csv").string();
+    std::ofstream(path) << "before\n";
+    {
+        std::ostringstream out, err;
+        warnings warn(err, "in");
+        const auto table = open_table(format::csv, path, out, table_info{}, write_options{}, warn);
+        table->begin_track("", false);
+        const auto tracks = tracks_of(2, 50000);
+        for (const sample& s : tracks[1]) table->row(s);  // (track 1: no translations)
+    }  // an error before finish(): the table goes
+    CHECK(file_text(path) == "before\n");
+    CHECK(std::distance(std::filesystem::directory_iterator(dir), {}) == 1);
+    std::filesystem::remove_all(dir);
+}
