@@ -53,6 +53,12 @@ struct options {
 /// and errors to `err` as "keyrot: ..." lines. Returns the exit status:
 /// 0 success, 1 compare found differences, 2 any error. Throws usage_error
 /// for a bad combination of flags.
+///
+///     keyrot::options o;
+///     o.cmd = keyrot::command::resample;
+///     o.inputs = {"walk.csv"};
+///     o.fps = 30;
+///     const int status = keyrot::run(o, std::cin, std::cout, std::cerr);
 int run(const options& opts, std::istream& in, std::ostream& out, std::ostream& err);
 
 }  // namespace keyrot

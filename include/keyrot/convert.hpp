@@ -33,6 +33,7 @@ inline constexpr std::array<enum_name<angle_unit>, 2> names_of<angle_unit> = {
     {{angle_unit::degrees, "degrees"}, {angle_unit::radians, "radians"}}};
 /// Unit conversions, rounded once (to within half an ulp).
 double to_radians(double angle, angle_unit from) noexcept;
+/// to_radians(90, angle_unit::degrees) = pi/2; from_radians(pi, angle_unit::degrees) = 180.
 double from_radians(double radians, angle_unit to) noexcept;
 
 /// An Euler sequence in scipy's naming: "XYZ" intrinsic, "zyx" extrinsic.
@@ -69,6 +70,7 @@ quat from_matrix(const mat3& m) noexcept;
 /// 180 degrees (w = 0) q and -q are both valid; the axis is chosen with its
 /// first non-zero component positive, so the answer does not depend on sign.
 axis_angle to_axis_angle(quat q) noexcept;
+/// The unit axis times the angle in [0, pi]: to_rotvec(90 degrees about z) = {0, 0, pi/2}.
 vec3 to_rotvec(quat q) noexcept;
 
 struct euler_angles {
@@ -77,6 +79,7 @@ struct euler_angles {
 };
 /// Direct quaternion-to-Euler (Bernardes & Viollet 2022), as scipy >= 1.11.
 euler_angles to_euler(quat q, const euler_seq& seq) noexcept;
+/// The rotation matrix acting on column vectors: to_matrix(90 degrees about z).m[0] = {0, -1, 0}.
 mat3 to_matrix(quat q) noexcept;
 
 }  // namespace keyrot

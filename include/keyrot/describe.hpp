@@ -31,6 +31,9 @@ struct track_info {
 /// Euler keys whose middle angle is this close to its singular value are reported.
 inline constexpr double near_gimbal_deg = 1;
 
+/// What `keyrot info` prints of a track: a track of two keys, the identity
+/// at 0 s and 90 degrees about z at 1 s, has one segment of 90 degrees at
+/// 90 degrees per second.
 track_info describe(const track& t);
 
 }  // namespace keyrot

@@ -12,12 +12,13 @@
 namespace keyrot {
 
 /// `text` with control characters and bytes that are not UTF-8 written as
-/// \xNN, so that a message quoting bad input stays one readable line.
+/// \xNN, so that a message quoting bad input stays one readable line:
+/// printable("a\tb") = "a\\x09b".
 std::string printable(std::string_view text);
 
 /// How a message quotes input: `text` whole up to `max` bytes, else its
 /// first `max` bytes (whole UTF-8 characters) and "...", so that a 50 MB
-/// bad value still gives a readable line.
+/// bad value still gives a readable line: excerpt("abcdef", 3) = "abc...".
 std::string excerpt(std::string_view text, std::size_t max = 40);
 
 struct error : std::runtime_error {
@@ -39,7 +40,7 @@ struct input_error : error {
         : error(where + ": " + message) {}
 };
 
-/// Prints "keyrot: <message>" as one printable line.
+/// Prints "keyrot: <message>" as one printable line: print_error(err, "walk.csv:3: ...").
 void print_error(std::ostream& err, std::string_view message);
 
 /// Warnings for one input source, each kind printed at most once

@@ -23,7 +23,8 @@ inline constexpr std::array<enum_name<method>, 5> names_of<method> = {{{method::
 enum class path { shortest, direct };
 template <>
 inline constexpr std::array<enum_name<path>, 2> names_of<path> = {{{path::shortest, "shortest"}, {path::direct, "direct"}}};
-/// Throws usage_error for method::euler without an Euler sequence.
+/// Throws usage_error for method::euler without an Euler sequence:
+/// check_method(method::euler, std::nullopt) says "--method euler needs an Euler sequence".
 void check_method(method m, const std::optional<euler_seq>& seq);
 
 /// Spherical linear interpolation from a to b, prepared once per pair of
@@ -48,9 +49,11 @@ private:
 /// slerp_segment(a, b).at(h). slerp(1, 90deg@z, 0.5) = 45deg@z.
 quat slerp(quat a, quat b, double h) noexcept;
 /// Lerp of the components, normalised (seed 000, "method 1"). If the lerp
-/// is zero (b = -a, h = 1/2) the rotation is a's.
+/// is zero (b = -a, h = 1/2) the rotation is a's. nlerp(1, 90deg@z, 0.5) =
+/// 45deg@z, as slerp at the midpoint; elsewhere it runs ahead or behind.
 quat nlerp(quat a, quat b, double h) noexcept;
 /// Shoemake's control point s_i = q_i exp(-(log(q_i^-1 q_next) + log(q_i^-1 q_prev)) / 4).
+/// Keys evenly spaced on one great circle give s_i = q_i (squad is then slerp).
 quat squad_control(quat prev, quat cur, quat next) noexcept;
 
 class segment_curve;

@@ -21,6 +21,7 @@ struct enum_name {
 template <class E>
 inline constexpr std::array<enum_name<E>, 0> names_of{};
 
+/// An enumeration with a table of names.
 template <class E>
 concept named_enum = std::is_enum_v<E> && (names_of<E>.size() > 0);
 

@@ -83,14 +83,18 @@ struct sample {
 
 /// One key converted and validated on its own: rotation to a unit
 /// quaternion, frame to time. Throws input_error naming the key; warns once
-/// per source about renormalised quaternions.
+/// per source about renormalised quaternions. A raw key of kind
+/// rep::axis_angle with values {0, 0, 2, 90} (degrees) becomes rotation
+/// {cos 45deg, 0, 0, sin 45deg}.
 key make_key(const raw_key& raw, const key_settings& settings, warnings& warn);
 
 /// A field of the input that keyrot does not read (a misspelt "translaton"):
 /// one warning per source, or with strict settings an input_error at `where`.
 void unknown_field(std::string_view name, const std::string& where, const key_settings& settings, warnings& warn);
 
-/// Throws input_error unless `next` comes strictly after `previous`.
+/// Throws input_error unless `next` comes strictly after `previous`: keys at
+/// 0 s then 0 s give "walk.csv:3: time 0 s is not after the previous key's 0 s:
+/// expected strictly increasing times".
 void check_order(const key& previous, const key& next, const std::string& source);
 
 /// A track built one key at a time (make_key, check_order, at least one
