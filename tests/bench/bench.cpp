@@ -5,9 +5,11 @@
 // has numpy and scipy, the script a scipy user would write (loadtxt ->
 // Slerp -> as_rotvec -> savetxt), several times each, taking turns, and
 // prints median wall time, frames per second, peak RSS and the ratio. The
-// first track's command is also timed writing a new file each run.
+// first track's command is also timed writing a new file each run. With
+// --baseline, another keyrot binary (say, before a change) runs the same
+// commands in the same turns, and the ratio of the two is printed.
 //
-// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--python PATH] [--dir DIR]
+// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR]
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <fcntl.h>
@@ -146,11 +148,12 @@ std::string cpu_model() {
 
 int main(int argc, char** argv) {
     int runs = 5;
-    std::string keyrot = KEYROT_BINARY, python, dir = (std::filesystem::temp_directory_path() / "keyrot-bench").string();
+    std::string keyrot = KEYROT_BINARY, baseline, python, dir = (std::filesystem::temp_directory_path() / "keyrot-bench").string();
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string flag = argv[i];
         if (flag == "--runs") runs = std::max(1, std::atoi(argv[i + 1]));
         else if (flag == "--keyrot") keyrot = argv[i + 1];
+        else if (flag == "--baseline") baseline = argv[i + 1];
         else if (flag == "--python") python = argv[i + 1];
         else if (flag == "--dir") dir = argv[i + 1];
     }
@@ -175,6 +178,10 @@ int main(int argc, char** argv) {
     const auto print_per_million = [](const std::string& what, const summary& m, std::size_t count) {
         fmt::print("{:<34} {:>10.3f}\n", "  per million " + what, m.median_s * 1e6 / static_cast<double>(count));
     };
+    const auto print_baseline = [&](const summary& base, const summary& m, std::size_t frames) {
+        print_row("baseline (same turns)", base, frames);
+        fmt::print("{:<34} {:>10.3f}\n", "  ratio (keyrot / baseline)", m.median_s / base.median_s);
+    };
     const input inputs[] = {{200000}, {200000, digits::numpy}, {800000}, {1000000, digits::shortest, 25}};
     for (const input& in : inputs) {
         const bool numpy = in.style == digits::numpy, dense = in.density > 1;
@@ -192,6 +199,8 @@ int main(int argc, char** argv) {
         const std::string new_out = dir + "/new_out.csv";
         if (also_new_file)
             commands.push_back({{keyrot, "resample", track, "-o", new_out, "--rep", "axis-angle"}, new_out});
+        if (!baseline.empty())
+            commands.push_back({{baseline, "resample", track, "-o", dir + "/out_baseline.csv", "--rep", "axis-angle"}});
         const auto results = repeat(commands, runs);
         print_row(fmt::format("keyrot, {:.1f}M frames{}{}", static_cast<double>(frames) / 1e6, numpy ? ", %.18e" : "",
                               dense ? fmt::format(", {:.0f}M keys", static_cast<double>(in.keys) / 1e6) : ""),
@@ -200,9 +209,10 @@ int main(int argc, char** argv) {
         if (dense) print_per_million("keys", results[0], in.keys);
         else print_per_million("frames", results[0], frames);
         if (also_new_file) {
-            print_row("keyrot, the same to a new file", results.back(), frames);
-            print_per_million("frames", results.back(), frames);
+            print_row("keyrot, the same to a new file", results[commands.size() - 1 - !baseline.empty()], frames);
+            print_per_million("frames", results[commands.size() - 1 - !baseline.empty()], frames);
         }
+        if (!baseline.empty()) print_baseline(results.back(), results[0], frames);
         if (python.empty()) {
             fmt::print("  scipy: not run (no python3 with numpy and scipy; apt-get install python3-scipy)\n");
         } else if (with_scipy) {
@@ -212,6 +222,11 @@ int main(int argc, char** argv) {
     }
     const std::string small = dir + "/ten.csv";
     write_track(small, 10);
-    const auto start = repeat({{{keyrot, "resample", small, "-o", dir + "/ten_out.csv"}}}, runs * 10)[0];
-    fmt::print("{:<34} {:>10.2f} ms\n", "keyrot start-up, 10 keys", start.median_s * 1e3);
+    std::vector<command> small_runs = {{{keyrot, "resample", small, "-o", dir + "/ten_out.csv"}}};
+    if (!baseline.empty()) small_runs.push_back({{baseline, "resample", small, "-o", dir + "/ten_out_baseline.csv"}});
+    const auto start = repeat(small_runs, runs * 10);
+    fmt::print("{:<34} {:>10.2f} ms\n", "keyrot start-up, 10 keys", start[0].median_s * 1e3);
+    if (!baseline.empty())
+        fmt::print("{:<34} {:>10.2f} ms, ratio {:.3f}\n", "baseline start-up", start[1].median_s * 1e3,
+                   start[0].median_s / start[1].median_s);
 }
