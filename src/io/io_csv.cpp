@@ -300,8 +300,7 @@ public:
                 continue;
             }
             if (comment_line != 0 && !names_time(line)) {
-                first_key_ = line;  // kept for next_line(): reading on reuses the line's memory
-                first_key_line_ = lines_.number();
+                lines_.put_back();  // the first key, read with the header
                 header_line_ = comment_line;
                 rows_.emplace(parse_header(splitter.split(comment, source, comment_line),
                                            fmt::format("{}:{}", source, comment_line), warn),
@@ -331,11 +330,6 @@ public:
     bool next(std::string& track, raw_key& k) override { return next_parsed(*rows_, track, k); }
 
     bool next_line(std::string_view& line, text_place& at) override {
-        if (first_key_line_ != 0) {
-            line = first_key_;
-            at.line = std::exchange(first_key_line_, 0);
-            return true;
-        }
         if (!lines_.next(line)) return false;
         at.line = lines_.number();
         return true;
@@ -369,8 +363,6 @@ private:
     key_settings settings_;
     std::optional<csv_rows> rows_;  // once the header is read
     std::size_t header_line_ = 0;
-    std::string first_key_;           // the first row under a commented header, read with it
-    std::size_t first_key_line_ = 0;  // its line until next_line() gives it; then 0
 };
 
 }  // namespace

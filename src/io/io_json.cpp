@@ -307,8 +307,7 @@ public:
         if (!parsed) slow = json::parse(line.begin(), line.end(), nullptr, false);
         const bool header = parsed ? is_header(fast.root()) : !slow->is_discarded() && is_header(dom_value(*slow));
         if (!header) {
-            first_line_ = line;
-            first_line_no_ = lines_.number();
+            lines_.put_back();  // a key, read with the header test
             return;
         }
         const std::string where = fmt::format("{}:{}", opts.source, lines_.number());
@@ -326,11 +325,6 @@ public:
     bool next(std::string& track, raw_key& k) override { return next_parsed(keys_, track, k); }
 
     bool next_line(std::string_view& line, text_place& at) override {
-        if (first_line_no_ != 0) {
-            line = first_line_;
-            at.line = std::exchange(first_line_no_, 0);
-            return true;
-        }
         if (!lines_.next(line)) return false;
         at.line = lines_.number();
         return true;
@@ -348,8 +342,6 @@ private:
     line_reader lines_;
     key_settings settings_;
     ndjson_lines keys_;
-    std::string first_line_;        // the first line, when it holds a key: read with the header test
-    std::size_t first_line_no_ = 0;  // its number until next_line() gives it; then 0
 };
 
 }  // namespace

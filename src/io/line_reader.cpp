@@ -33,6 +33,17 @@ bool line_reader::fill() {
 }
 
 bool line_reader::next(std::string_view& line) {
+    if (held_) {
+        held_ = false;
+        line = last_;
+        return true;
+    }
+    if (!read(line)) return false;
+    last_ = line;
+    return true;
+}
+
+bool line_reader::read(std::string_view& line) {
     std::size_t searched = begin_;
     for (;;) {
         const auto* data = buf_.data();

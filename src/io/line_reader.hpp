@@ -19,9 +19,14 @@ public:
     /// number() is its 1-based number.
     bool next(std::string_view& line);
     std::size_t number() const noexcept { return number_; }
+    /// The next call of next() gives the line it gave last once more, with
+    /// its number: a line read to learn what it is (a header, or the first
+    /// key), then read as a key.
+    void put_back() noexcept { held_ = true; }
 
 private:
-    bool fill();  // reads more; false at the end of the stream
+    bool read(std::string_view& line);  // the next line from the stream
+    bool fill();                        // reads more; false at the end of the stream
 
     std::istream& in_;
     std::size_t max_line_;
@@ -30,6 +35,8 @@ private:
     std::size_t begin_ = 0, end_ = 0;  // unread bytes in buf_
     std::size_t number_ = 0;
     bool at_start_ = true, at_end_ = false;
+    std::string_view last_;  // the line next() gave last
+    bool held_ = false;      // put back: next() gives last_ again
 };
 
 }  // namespace keyrot
