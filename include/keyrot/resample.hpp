@@ -41,7 +41,7 @@ public:
     /// then wait for the translation key after them).
     track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, bool translations,
                     frame_sink emit);
-    /// Precondition: times strictly increasing (make_track's validation).
+    /// Precondition: times strictly increasing (check_order, as track_builder checks).
     void add(const key& k);
     /// After the last key: the remaining frames.
     void finish();

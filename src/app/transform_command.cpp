@@ -357,23 +357,25 @@ void check_output_names(const options& o, const std::vector<std::string>& inputs
     }
 }
 
+/// What the options make of input `name`: how it is read, its row source,
+/// the formats, where its output goes.
+transform_plan plan_for(const options& o, const std::string& name, const input_source& src) {
+    transform_plan p{o, reading(o, src.source()), nullptr, src.detect(o.from), format::csv, std::nullopt};
+    if (o.cmd == command::resample) p.rows = std::make_unique<frame_rows>(resampling(o));
+    else p.rows = std::make_unique<key_rows>();
+    p.out = o.to.value_or(p.in);
+    if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
+    else if ((p.target = output_path(o)) && !o.to) p.out = format_of_path(*p.target).value_or(p.in);
+    return p;
+}
+
 /// resample or convert one input; errors and warnings to `err`. Returns the status.
 int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err) {
     try {
         if (is_standard_stream(name) && o.output_dir)
             throw usage_error("standard input ('-') cannot be used with --output-dir");
         const input_source src(name, in);
-        transform_plan p{o, reading(o, src.source()), nullptr, format::csv, format::csv, std::nullopt};
-        if (o.cmd == command::resample) p.rows = std::make_unique<frame_rows>(resampling(o));
-        else p.rows = std::make_unique<key_rows>();
-        p.in = src.detect(o.from);
-        p.out = o.to.value_or(p.in);
-        if (o.output_dir) {
-            p.target = in_output_dir(*o.output_dir, name, p.out).string();
-        } else if ((p.target = output_path(o)) && !o.to) {
-            p.out = format_of_path(*p.target).value_or(p.in);
-        }
-        transform(p, src, out, err);
+        transform(plan_for(o, name, src), src, out, err);
         return 0;
     } catch (const usage_error&) {
         throw;
