@@ -11,9 +11,11 @@
 #include <sstream>
 
 #include "cli.hpp"
+#include "helpers.hpp"
 
 using namespace keyrot;
 namespace fs = std::filesystem;
+using keyrot::test::scratch;
 
 namespace {
 
@@ -34,31 +36,6 @@ options parse(std::vector<const char*> args) {
     std::ostringstream out;
     return *parse_command_line(static_cast<int>(args.size()), args.data(), out);
 }
-
-/// A fresh directory under the system's temporary directory, removed after.
-struct scratch {
-    fs::path dir;
-    scratch() {
-        dir = fs::temp_directory_path() / ("keyrot-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter()++));
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~scratch() { fs::remove_all(dir); }
-    static int& counter() {
-        static int n = 0;
-        return n;
-    }
-    std::string file(const std::string& name, const std::string& text) const {
-        std::ofstream(dir / name) << text;
-        return (dir / name).string();
-    }
-    static std::string read(const fs::path& p) {
-        std::ifstream in(p);
-        std::stringstream s;
-        s << in.rdbuf();
-        return s.str();
-    }
-};
 
 const char* two_keys = "time,ax,ay,az,angle\n0,0,0,1,0\n1,0,0,1,90\n";
 

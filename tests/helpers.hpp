@@ -3,12 +3,43 @@
 // rotations, so every comparison here names its tolerance.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "keyrot/quat.hpp"
 
 namespace keyrot::test {
+
+/// A fresh directory under the system's temporary directory, removed after.
+struct scratch {
+    std::filesystem::path dir;
+    scratch() {
+        dir = std::filesystem::temp_directory_path() / ("keyrot-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter()++));
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir);
+    }
+    ~scratch() { std::filesystem::remove_all(dir); }
+    static int& counter() {
+        static int n = 0;
+        return n;
+    }
+    std::string file(const std::string& name, const std::string& text) const {
+        std::ofstream(dir / name) << text;
+        return (dir / name).string();
+    }
+    static std::string read(const std::filesystem::path& p) {
+        std::ifstream in(p);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+};
 
 inline double max_diff(quat a, quat b) {
     return std::fmax(std::fmax(std::fabs(a.w - b.w), std::fabs(a.x - b.x)),

@@ -58,11 +58,6 @@ std::string through_table(format f, const std::optional<std::string>& path, cons
     return out.str();
 }
 
-std::string file_text(const std::string& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
 }  // namespace
 
 TEST_CASE("open_table: the same bytes as the writer alone, small or large, to a stream or a file") {
@@ -72,9 +67,7 @@ TEST_CASE("open_table: the same bytes as the writer alone, small or large, to a 
     info.fps = 24;
     write_options w;
     w.representation = rep::quat;
-    const auto dir = std::filesystem::temp_directory_path() / "keyrot_open_table_test";
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
+    const keyrot::test::scratch s;
     // 10 rows stay on this thread; 3 x 50,000 rows cross batches, tracks
     // begin inside batches, and the output passes several chunks.
     for (const std::size_t rows : {std::size_t{10}, std::size_t{50000}}) {
@@ -84,29 +77,24 @@ TEST_CASE("open_table: the same bytes as the writer alone, small or large, to a 
             CAPTURE(to_string(f));
             const std::string want = direct(f, info, w, tracks);
             CHECK(through_table(f, std::nullopt, info, w, tracks) == want);
-            const std::string path = (dir / "out").string();
+            const std::string path = (s.dir / "out").string();
             CHECK(through_table(f, path, info, w, tracks).empty());
-            CHECK(file_text(path) == want);
+            CHECK(s.read(path) == want);
         }
     }
-    std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("open_table: a table never finished leaves no file, and its file is not touched") {
-    const auto dir = std::filesystem::temp_directory_path() / "keyrot_open_table_unfinished";
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    const std::string path = (dir / "out.csv").string();
-    std::ofstream(path) << "before\n";
+    const keyrot::test::scratch s;
+    const std::string path = s.file("out.csv", "before\n");
     {
         std::ostringstream out, err;
         warnings warn(err, "in");
         const auto table = open_table(format::csv, path, out, table_info{}, write_options{}, warn);
         table->begin_track("", false);
         const auto tracks = tracks_of(2, 50000);
-        for (const sample& s : tracks[1]) table->row(s);  // (track 1: no translations)
+        for (const sample& row : tracks[1]) table->row(row);  // (track 1: no translations)
     }  // an error before finish(): the table goes
-    CHECK(file_text(path) == "before\n");
-    CHECK(std::distance(std::filesystem::directory_iterator(dir), {}) == 1);
-    std::filesystem::remove_all(dir);
+    CHECK(s.read(path) == "before\n");
+    CHECK(std::distance(std::filesystem::directory_iterator(s.dir), {}) == 1);
 }

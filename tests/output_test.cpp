@@ -9,16 +9,12 @@
 #include <sstream>
 #include <string>
 
+#include "helpers.hpp"
 #include "keyrot/error.hpp"
 
 using namespace keyrot;
 
 namespace {
-
-std::string file_text(const std::filesystem::path& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
 
 std::size_t files_in(const std::filesystem::path& dir) {
     return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
@@ -27,9 +23,8 @@ std::size_t files_in(const std::filesystem::path& dir) {
 }  // namespace
 
 TEST_CASE("output_file: the old file until commit, the new one after, no temporary left") {
-    const auto dir = std::filesystem::temp_directory_path() / "keyrot_output_test";
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
+    const keyrot::test::scratch s;
+    const auto& dir = s.dir;
     const auto path = dir / "out.csv";
     std::ofstream(path) << "old\n";
     ::chmod(path.c_str(), 0640);
@@ -38,10 +33,10 @@ TEST_CASE("output_file: the old file until commit, the new one after, no tempora
         output_file f(path.string());
         f.write("new ");
         f.write("text\n");
-        CHECK(file_text(path) == "old\n");
+        CHECK(s.read(path) == "old\n");
         CHECK(files_in(dir) == 2);  // the temporary beside it
         f.commit();
-        CHECK(file_text(path) == "new text\n");
+        CHECK(s.read(path) == "new text\n");
         CHECK(files_in(dir) == 1);
         struct stat st {};
         REQUIRE(::stat(path.c_str(), &st) == 0);
@@ -52,12 +47,12 @@ TEST_CASE("output_file: the old file until commit, the new one after, no tempora
             output_file f(path.string());
             f.write("half a table");
         }
-        CHECK(file_text(path) == "old\n");
+        CHECK(s.read(path) == "old\n");
         CHECK(files_in(dir) == 1);
     }
     SUBCASE("a new file, whole") {
         write_file_atomically((dir / "fresh.json").string(), "{}\n");
-        CHECK(file_text(dir / "fresh.json") == "{}\n");
+        CHECK(s.read(dir / "fresh.json") == "{}\n");
         CHECK(files_in(dir) == 2);
     }
     SUBCASE("a directory that does not exist: one line, nothing written") {
@@ -68,13 +63,13 @@ TEST_CASE("output_file: the old file until commit, the new one after, no tempora
             CHECK(std::string(e.what()).find("missing/x.csv") != std::string::npos);
         }
     }
-    std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("devices and descriptors are written straight into, files replaced") {
     CHECK_FALSE(replaced_on_commit("/dev/null"));
     CHECK_FALSE(replaced_on_commit("/dev/stdout"));
-    CHECK(replaced_on_commit((std::filesystem::temp_directory_path() / "keyrot_no_such_file.csv").string()));
+    const keyrot::test::scratch s;
+    CHECK(replaced_on_commit((s.dir / "no_such_file.csv").string()));
 }
 
 TEST_CASE("write_to_stream says why a stream cannot be written") {

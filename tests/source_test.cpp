@@ -9,6 +9,7 @@
 #include <sstream>
 #include <string>
 
+#include "helpers.hpp"
 #include "keyrot/error.hpp"
 
 using namespace keyrot;
@@ -20,17 +21,16 @@ std::string all_of(std::istream& in) { return {std::istreambuf_iterator<char>(in
 }  // namespace
 
 TEST_CASE("input_source: a file, read from the start as often as asked") {
-    const auto path = std::filesystem::temp_directory_path() / "keyrot_source_test.json";
-    std::ofstream(path) << "[{\"time\": 0, \"quat\": [1, 0, 0, 0]}]\n";
+    const keyrot::test::scratch s;
+    const std::string path = s.file("keys.json", "[{\"time\": 0, \"quat\": [1, 0, 0, 0]}]\n");
     std::istringstream unused;
-    const input_source src(path.string(), unused);
-    CHECK(src.source() == path.string());
+    const input_source src(path, unused);
+    CHECK(src.source() == path);
     CHECK(src.detect(std::nullopt) == format::json);
     CHECK(src.detect(format::ndjson) == format::ndjson);
     const auto first = src.open();
     const auto second = src.open();
     CHECK(all_of(*first) == all_of(*second));
-    std::filesystem::remove(path);
 }
 
 TEST_CASE("input_source: standard input ('-') is kept, read twice, named <stdin>, sniffed") {
@@ -50,13 +50,12 @@ TEST_CASE("input_source: a missing file is one line naming it; a file that chang
     } catch (const error& e) {
         CHECK(std::string(e.what()) == "cannot read '/nonexistent/keys.csv': No such file or directory");
     }
-    const auto path = std::filesystem::temp_directory_path() / "keyrot_source_changes.csv";
-    std::ofstream(path) << "time,qw,qx,qy,qz\n0,1,0,0,0\n";
-    const input_source src(path.string(), unused);
+    const keyrot::test::scratch s;
+    const std::string path = s.file("keys.csv", "time,qw,qx,qy,qz\n0,1,0,0,0\n");
+    const input_source src(path, unused);
     all_of(*src.open());
     std::ofstream(path, std::ios::app) << "1,1,0,0,0\n";
     CHECK_THROWS_AS(all_of(*src.open()), error);
-    std::filesystem::remove(path);
 }
 
 TEST_CASE("'-' is the one name of the standard streams") {
