@@ -122,10 +122,6 @@ void finish(options& o, const raw_flags& f) {
         throw usage_error(fmt::format("-o {}: info writes text, or JSON with --to json or a .json name", *o.output));
 }
 
-/// The command whose name is nearest `word` (fewest letters changed,
-/// added or taken away), to suggest for a misspelt one.
-std::string_view nearest_command(std::string_view word);
-
 }  // namespace
 
 namespace {
@@ -199,25 +195,54 @@ constexpr std::array<command_definition, 5> commands = {{
     {"info", "describe a track: keys, duration, per-segment angles, warnings", command::info, define_info},
 }};
 
-std::string_view nearest_command(std::string_view word) {
-    const auto distance = [](std::string_view a, std::string_view b) {
-        std::vector<std::size_t> row(b.size() + 1);
-        for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-        for (std::size_t i = 1; i <= a.size(); ++i) {
-            std::size_t diagonal = row[0];
-            row[0] = i;
-            for (std::size_t j = 1; j <= b.size(); ++j) {
-                const std::size_t above = row[j];
-                row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-                diagonal = above;
-            }
+/// Edits from a to b: insertions, deletions, substitutions, and swaps of
+/// two neighbouring letters ("--fsp" is one edit from "--fps").
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+    std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+    for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+    for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i)
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
         }
-        return row[b.size()];
-    };
-    const auto best = std::min_element(commands.begin(), commands.end(), [&](const auto& x, const auto& y) {
-        return distance(word, x.name) < distance(word, y.name);
+    return d[a.size()][b.size()];
+}
+
+/// The name in `names` fewest edits away from `word`.
+std::string nearest(std::string_view word, const std::vector<std::string>& names) {
+    return *std::min_element(names.begin(), names.end(), [&](const auto& x, const auto& y) {
+        return edit_distance(word, x) < edit_distance(word, y);
     });
-    return best->name;
+}
+
+/// For an unexpected flag (CLI11's "The following argument was not
+/// expected: --fsp"), " (did you mean '--fps'?)" when one of the command's
+/// flags is a slip of the keyboard away (one edit for a name of four letters
+/// or fewer, two for a longer one); else nothing: compare's "--rep" is no
+/// "--help".
+std::string flag_suggestion(const CLI::App& sub, const std::string& message) {
+    const auto colon = message.rfind(": ");
+    if (colon == std::string::npos) return "";
+    std::string_view rest = std::string_view(message).substr(colon + 2), word;
+    while (!rest.empty() && !word.starts_with("-")) {  // the first that looks like a flag
+        const auto space = std::min(rest.find(' '), rest.size());
+        word = rest.substr(0, space);
+        rest.remove_prefix(std::min(space + 1, rest.size()));
+    }
+    word = word.substr(0, word.find('='));
+    if (!word.starts_with("-")) return "";
+    std::vector<std::string> flags;
+    for (const CLI::Option* option : sub.get_options()) {
+        for (const std::string& name : option->get_lnames())
+            if (name != "help") flags.push_back("--" + name);
+        for (const std::string& name : option->get_snames())
+            if (name != "h") flags.push_back("-" + name);
+    }
+    if (flags.empty()) return "";
+    const std::string best = nearest(word, flags);
+    const std::size_t letters = word.size() - std::min(word.find_first_not_of('-'), word.size());
+    return edit_distance(word, best) <= (letters <= 4 ? 1u : 2u) ? fmt::format(" (did you mean '{}'?)", best) : "";
 }
 
 }  // namespace
@@ -233,10 +258,13 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
     // --help and for the error message.
     const std::string_view first = argc > 1 ? argv[1] : "";
     const bool known = std::any_of(commands.begin(), commands.end(), [&](const auto& c) { return first == c.name; });
-    if (!known && !first.empty() && first.front() != '-')
+    if (!known && !first.empty() && first.front() != '-') {
+        std::vector<std::string> names;
+        for (const auto& c : commands) names.emplace_back(c.name);
         throw usage_error(fmt::format("unknown command '{}': expected resample, convert, slerp, compare or info "
                                       "(did you mean '{}'?)",
-                                      excerpt(first), nearest_command(first)));
+                                      excerpt(first), nearest(first, names)));
+    }
     std::array<CLI::App*, commands.size()> subs{};
     for (std::size_t i = 0; i < commands.size(); ++i) {
         subs[i] = app.add_subcommand(commands[i].name, commands[i].description);
@@ -257,6 +285,9 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
         if (!known) throw usage_error("expected a command: resample, convert, slerp, compare or info (see keyrot --help)");
         std::string what = e.what();
         if (what == "ACTUAL is required") what = "ACTUAL is missing: expected two files, EXPECTED ACTUAL";
+        if (dynamic_cast<const CLI::ExtrasError*>(&e))
+            for (std::size_t i = 0; i < commands.size(); ++i)
+                if (first == commands[i].name) what += flag_suggestion(*subs[i], what);
         throw usage_error(fmt::format("{}: {} (see keyrot {} --help)", first, what, first));
     }
     for (std::size_t i = 0; i < commands.size(); ++i)
