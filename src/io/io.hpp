@@ -1,6 +1,7 @@
 #pragma once
-// The file formats and what is common to their readers and writers: the
-// document a reader returns and the row-by-row writer interface.
+// What the commands see of the formats: how keys are read (read_options,
+// key_reader, raw_key_sink) and how tables are written (table_info,
+// table_output). io/open.hpp opens them for a format.
 #include <functional>
 #include <istream>
 #include <memory>
@@ -43,8 +44,9 @@ public:
 /// Throws input_error for a track name with control characters.
 void check_track_name(const std::string& name, const std::string& where);
 
-/// Keys one at a time from a line-based document (CSV, NDJSON), in file
-/// order, so that a long track needs no more memory than a few keys.
+/// Keys one at a time from a document (CSV, NDJSON, a JSON document the
+/// streaming reader takes), in file order, so that a long track needs no
+/// more memory than a few keys.
 class key_reader {
 public:
     virtual ~key_reader() = default;
