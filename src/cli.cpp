@@ -7,6 +7,9 @@
 #include <array>
 #include <cmath>
 #include <ostream>
+#include <span>
+
+#include "formats_help.hpp"
 
 namespace keyrot {
 
@@ -35,40 +38,51 @@ std::vector<std::string> names() {
 
 /// Flags for reading keys (every command but slerp).
 void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
+    sub.option_defaults()->group("Input");
     sub.add_option("--from", f.from, "input format (default: by extension, else sniffed)")
         ->check(CLI::IsMember(names<format>()));
     sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
     sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
-    sub.add_option("--max-bytes", o.max_bytes, "most bytes a CSV or NDJSON line, or a JSON document read whole, may "
-                                               "take (default 268435456: 256 MiB)");
+    sub.add_option("--max-bytes", o.max_bytes,
+                   fmt::format("most bytes a CSV or NDJSON line, or a JSON document read whole, may take (default {}: "
+                               "{} MiB)",
+                               default_max_bytes, default_max_bytes >> 20));
 }
 
 /// The angle and quaternion conventions of the input (and of the output,
 /// for the commands that write rotations).
 void add_convention_flags(CLI::App& sub, options& o, raw_flags& f) {
+    sub.option_defaults()->group("Conventions");
     sub.add_option("--euler", f.euler, "Euler sequence of the input, e.g. ZYX (intrinsic) or xyz (extrinsic)");
-    sub.add_option("--quat-order", f.quat_order, "order of quaternion arrays and output columns")
+    sub.add_option("--quat-order", f.quat_order,
+                   fmt::format("order of quaternion arrays and output columns (default: {})", f.quat_order))
         ->check(CLI::IsMember(names<quat_order>()));
     sub.add_flag("--radians", o.radians, "angles in radians, input and output (default: degrees)");
 }
 
 /// Flags for writing rotations, and the conventions.
 void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
+    sub.option_defaults()->group("Output");
     sub.add_option("-o,--output", o.output, "output file (default: standard output)");
     sub.add_option("--to", f.to, "output format (default: extension of -o, else the input format)")
         ->check(CLI::IsMember(names<format>()));
-    sub.add_option("--rep", f.rep, "output representation")->check(CLI::IsMember(names<rep>()));
-    add_convention_flags(sub, o, f);
+    sub.add_option("--rep", f.rep, fmt::format("output representation (default: {})", f.rep))
+        ->check(CLI::IsMember(names<rep>()));
     sub.add_option("--out-euler", f.out_euler, "Euler sequence of the output (default: --euler)");
     auto* deg = sub.add_flag("--out-degrees", f.out_degrees, "output angles in degrees");
     auto* rad = sub.add_flag("--out-radians", f.out_radians, "output angles in radians");
     deg->excludes(rad);
     sub.add_option("--precision", f.precision, "digits after the decimal point (default: shortest round trip)");
+    add_convention_flags(sub, o, f);
 }
 
 void add_method_flags(CLI::App& sub, raw_flags& f) {
-    sub.add_option("--method", f.method, "interpolation method")->check(CLI::IsMember(names<method>()));
-    sub.add_option("--path", f.path, "shortest: consecutive keys in one hemisphere; direct: signs as given")
+    sub.option_defaults()->group("Interpolation");
+    sub.add_option("--method", f.method, fmt::format("interpolation method (default: {})", f.method))
+        ->check(CLI::IsMember(names<method>()));
+    sub.add_option("--path", f.path,
+                   fmt::format("shortest: consecutive keys in one hemisphere; direct: signs as given (default: {})",
+                               f.path))
         ->check(CLI::IsMember(names<path>()));
 }
 
@@ -128,6 +142,7 @@ namespace {
 
 void add_batch_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
+    sub.option_defaults()->group("Files");
     sub.add_option("--output-dir", o.output_dir, "directory for the outputs of several inputs");
     sub.add_option("--jobs", f.jobs, "files converted at once (default: the number of cores)");
 }
@@ -136,48 +151,77 @@ void define_resample(CLI::App& sub, options& o, raw_flags& f) {
     add_batch_flags(sub, o, f);
     add_input_flags(sub, o, f);
     add_output_flags(sub, o, f);
-    sub.add_option("--fps", o.fps, "output frame rate (default 24)");
-    sub.add_option("--max-frames", o.max_frames, "most frames a track may make (default 1e7: 116 hours at 24 fps)");
     add_method_flags(sub, f);
+    sub.add_option("--fps", o.fps, fmt::format("output frame rate (default {})", o.fps));
+    sub.add_option("--max-frames", o.max_frames,
+                   fmt::format("most frames a track may make (default {:.0f}: {:.0f} hours at {} fps)", o.max_frames,
+                               o.max_frames / o.fps / 3600, o.fps));
+    sub.footer(R"(Examples:
+  keyrot resample walk.csv --fps 30 -o walk30.json
+  keyrot resample turntable.csv --method squad --rep quat --precision 6
+  keyrot resample *.csv --fps 60 --to ndjson --output-dir resampled)");
 }
 
 void define_convert(CLI::App& sub, options& o, raw_flags& f) {
     add_batch_flags(sub, o, f);
     add_input_flags(sub, o, f);
     add_output_flags(sub, o, f);
+    sub.footer(R"(Examples:
+  keyrot convert walk.csv --rep euler --euler ZYX -o walk.ndjson
+  keyrot convert homework.json --rep matrix --to csv
+  keyrot convert head_turn.json --rep quat --quat-order xyzw --radians)");
 }
 
 void define_slerp(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("Q0", o.q0, "first rotation, comma-separated (see --from-rep)")->required();
     sub.add_option("Q1", o.q1, "second rotation")->required();
+    sub.option_defaults()->group("Interpolation");
     sub.add_option("-t", o.ts, "interpolation parameter; may repeat");
     sub.add_option("--steps", o.steps, "sample t = 0, 1/N, ..., 1");
-    sub.add_option("--max-frames", o.max_frames, "most rows --steps may make (default 1e7)");
-    sub.add_option("--from-rep", f.from_rep, "what Q0 and Q1 are: quat (in --quat-order), axis-angle "
-                                             "(ax,ay,az,angle), rotvec, euler (needs --euler)")
+    sub.add_option("--max-frames", o.max_frames, fmt::format("most rows --steps may make (default {:.0f})", o.max_frames));
+    sub.add_option("--from-rep", f.from_rep,
+                   fmt::format("what Q0 and Q1 are: quat (in --quat-order), axis-angle (ax,ay,az,angle), rotvec, "
+                               "euler (needs --euler) (default: {})",
+                               f.from_rep))
         ->check(CLI::IsMember({"quat", "axis-angle", "rotvec", "euler"}));
-    add_output_flags(sub, o, f);
     add_method_flags(sub, f);
+    add_output_flags(sub, o, f);
+    sub.footer(R"(Examples:
+  keyrot slerp 1,0,0,0 0.7071068,0,0,0.7071068 -t 0.5
+  keyrot slerp 0,0,1,0 0,0,1,90 --from-rep axis-angle --steps 4 --rep quat
+  keyrot slerp 0,0,0 90,0,0 --from-rep euler --euler ZYX --method nlerp -t 0.25 -t 0.75)");
 }
 
 void define_compare(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("EXPECTED", f.expected, "the key: expected rotations ('-': standard input)")->required();
     sub.add_option("ACTUAL", f.actual, "the answer to grade ('-': standard input)")->required();
-    sub.add_option("--tol", o.tol_deg, "largest rotation difference in degrees (default 0.01)");
-    sub.add_option("--tol-translation", o.tol_translation, "largest translation difference (default 0.001)");
+    sub.option_defaults()->group("Grading");
+    sub.add_option("--tol", o.tol_deg, fmt::format("largest rotation difference in degrees (default {})", o.tol_deg));
+    sub.add_option("--tol-translation", o.tol_translation,
+                   fmt::format("largest translation difference (default {})", o.tol_translation));
+    sub.option_defaults()->group("Output");
     sub.add_option("--report", f.report, "json: a JSON report on standard output")->check(CLI::IsMember({"json"}));
     sub.add_option("-o,--output", o.output, "file for the summary, or the report (default: standard output)");
     add_input_flags(sub, o, f);
     add_convention_flags(sub, o, f);
+    sub.footer(R"(Exit status: 0 every row within tolerance, 1 some row differs or is missing, 2 an error.
+
+Examples:
+  keyrot convert walk.csv --rep matrix -o answer.csv && keyrot compare walk.csv answer.csv
+  keyrot convert homework.json --rep euler --euler XYZ | keyrot compare homework.json - --report json)");
 }
 
 void define_info(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
+    sub.option_defaults()->group("Output");
     sub.add_option("-o,--output", o.output, "output file; a .json name writes JSON (default: standard output)");
     sub.add_option("--to", f.to, "json: a JSON description instead of text")->check(CLI::IsMember({"json"}));
     sub.add_option("--precision", f.precision, "digits after the decimal point in the text (default 6)");
     add_input_flags(sub, o, f);
     add_convention_flags(sub, o, f);
+    sub.footer(R"(Examples:
+  keyrot info walk.csv
+  keyrot info homework.json head_turn.json --to json)");
 }
 
 struct command_definition {
@@ -194,6 +238,14 @@ constexpr std::array<command_definition, 5> commands = {{
     {"compare", "grade an answer: per-frame rotation difference", command::compare, define_compare},
     {"info", "describe a track: keys, duration, per-segment angles, warnings", command::info, define_info},
 }};
+
+/// CLI11's help, with one blank line between groups of flags (not two).
+std::string help_text(const CLI::App& app, CLI::AppFormatMode mode = CLI::AppFormatMode::Normal,
+                      const std::string& parent = "") {
+    std::string text = app.help(parent, mode);
+    for (auto at = text.find("\n\n\n"); at != std::string::npos; at = text.find("\n\n\n", at)) text.erase(at, 1);
+    return text;
+}
 
 /// Edits from a to b: insertions, deletions, substitutions, and swaps of
 /// two neighbouring letters ("--fsp" is one edit from "--fps").
@@ -245,12 +297,47 @@ std::string flag_suggestion(const CLI::App& sub, const std::string& message) {
     return edit_distance(word, best) <= (letters <= 4 ? 1u : 2u) ? fmt::format(" (did you mean '{}'?)", best) : "";
 }
 
+std::vector<std::string> command_names() {
+    std::vector<std::string> names;
+    for (const auto& c : commands) names.emplace_back(c.name);
+    return names;
+}
+
+/// `keyrot help [TOPIC]`: the program's help, a command's, or the formats'.
+void print_help_topic(const CLI::App& app, std::span<CLI::App* const> subs, int argc, const char* const* argv,
+                      std::ostream& out) {
+    if (argc > 3) throw usage_error(fmt::format("help: expected one topic, got '{}' too", excerpt(argv[3])));
+    const std::string_view topic = argc == 3 ? argv[2] : "";
+    if (topic.empty()) {
+        out << help_text(app);
+        return;
+    }
+    if (topic == "formats") {
+        out << formats_help();
+        return;
+    }
+    for (std::size_t i = 0; i < commands.size(); ++i)
+        if (topic == commands[i].name) {
+            out << help_text(*subs[i], CLI::AppFormatMode::Normal, app.get_name());
+            return;
+        }
+    std::vector<std::string> topics = command_names();
+    topics.emplace_back("formats");
+    throw usage_error(fmt::format("help: unknown topic '{}': expected formats, resample, convert, slerp, compare or "
+                                  "info (did you mean '{}'?)",
+                                  excerpt(topic), nearest(topic, topics)));
+}
+
 }  // namespace
 
 std::optional<options> parse_command_line(int argc, const char* const* argv, std::ostream& out) {
-    CLI::App app{"keyrot: keyframe rotation interpolator"};
+    CLI::App app{"keyrot: keyframe rotation interpolator", "keyrot"};
     app.set_version_flag("--version", version);
     app.require_subcommand(1);
+    app.footer(R"(Run 'keyrot COMMAND --help' for a command's flags and examples, 'keyrot help formats' for the CSV
+columns and JSON fields a file needs.
+
+Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (one line on standard error).)");
     options o;
     raw_flags f;
     // Only the command named first gets its options defined (about half of
@@ -258,9 +345,9 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
     // --help and for the error message.
     const std::string_view first = argc > 1 ? argv[1] : "";
     const bool known = std::any_of(commands.begin(), commands.end(), [&](const auto& c) { return first == c.name; });
-    if (!known && !first.empty() && first.front() != '-') {
-        std::vector<std::string> names;
-        for (const auto& c : commands) names.emplace_back(c.name);
+    if (!known && !first.empty() && first.front() != '-' && first != "help") {
+        std::vector<std::string> names = command_names();
+        names.emplace_back("help");
         throw usage_error(fmt::format("unknown command '{}': expected resample, convert, slerp, compare or info "
                                       "(did you mean '{}'?)",
                                       excerpt(first), nearest(first, names)));
@@ -270,13 +357,18 @@ std::optional<options> parse_command_line(int argc, const char* const* argv, std
         subs[i] = app.add_subcommand(commands[i].name, commands[i].description);
         if (!known || first == commands[i].name) commands[i].define(*subs[i], o, f);
     }
+    app.add_subcommand("help", "help on a command, or on the formats: keyrot help formats");
+    if (first == "help") {
+        print_help_topic(app, subs, argc, argv, out);
+        return std::nullopt;
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
-        out << app.help();
+        out << help_text(app);
         return std::nullopt;
     } catch (const CLI::CallForAllHelp&) {
-        out << app.help("", CLI::AppFormatMode::All);
+        out << help_text(app, CLI::AppFormatMode::All);
         return std::nullopt;
     } catch (const CLI::CallForVersion&) {
         out << "keyrot " << version << '\n';

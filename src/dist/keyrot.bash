@@ -1,0 +1,68 @@
+# Bash completion for keyrot: commands, each command's flags, the values of
+# enumerated flags, and files. tests/completion_test.sh checks it against
+# the program's own --help, so that the two cannot drift apart.
+
+_keyrot() {
+    local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD - 1]}
+    local commands="resample convert slerp compare info help"
+    local command="" i
+    for ((i = 1; i < COMP_CWORD; i++)); do
+        case ${COMP_WORDS[i]} in
+            resample | convert | slerp | compare | info | help) command=${COMP_WORDS[i]}; break ;;
+        esac
+    done
+
+    local input="--from --strict --key-fps --max-bytes"
+    local conventions="--euler --quat-order --radians"
+    local output="-o --output --to --rep --out-euler --out-degrees --out-radians --precision $conventions"
+    local interpolation="--method --path"
+    local flags
+    case $command in
+        resample) flags="--output-dir --jobs $input $output $interpolation --fps --max-frames" ;;
+        convert) flags="--output-dir --jobs $input $output" ;;
+        slerp) flags="-t --steps --max-frames --from-rep $interpolation $output" ;;
+        compare) flags="--tol --tol-translation --report -o --output $input $conventions" ;;
+        info) flags="-o --output --to --precision $input $conventions" ;;
+        help) flags="" ;;
+        *) flags="--version" ;;
+    esac
+    [[ $command == help ]] || flags="-h --help $flags"
+
+    local euler="XYZ XZY YXZ YZX ZXY ZYX XYX XZX YXY YZY ZXZ ZYZ xyz xzy yxz yzx zxy zyx xyx xzx yxy yzy zxz zyz"
+    local values
+    case $prev in
+        --from) values="csv json ndjson" ;;
+        --to) [[ $command == info ]] && values="json" || values="csv json ndjson" ;;
+        --rep) values="axis-angle quat rotvec euler matrix matrix4" ;;
+        --from-rep) values="quat axis-angle rotvec euler" ;;
+        --method) values="slerp nlerp squad step euler" ;;
+        --path) values="shortest direct" ;;
+        --quat-order) values="wxyz xyzw" ;;
+        --report) values="json" ;;
+        --euler | --out-euler) values=$euler ;;
+        -o | --output)
+            COMPREPLY=($(compgen -f -- "$cur"))
+            return ;;
+        --output-dir)
+            COMPREPLY=($(compgen -d -- "$cur"))
+            return ;;
+        -t | --steps | --fps | --key-fps | --max-frames | --max-bytes | --jobs | --precision | --tol | --tol-translation)
+            COMPREPLY=()  # a number
+            return ;;
+    esac
+    if [[ -n ${values-} && $prev == -* ]]; then
+        COMPREPLY=($(compgen -W "$values" -- "$cur"))
+        return
+    fi
+
+    if [[ $cur == -* ]]; then
+        COMPREPLY=($(compgen -W "$flags" -- "$cur"))
+    elif [[ -z $command ]]; then
+        COMPREPLY=($(compgen -W "$commands" -- "$cur"))
+    elif [[ $command == help ]]; then
+        ((COMP_CWORD == i + 1)) && COMPREPLY=($(compgen -W "formats resample convert slerp compare info" -- "$cur"))
+    elif [[ $command != slerp ]]; then
+        COMPREPLY=($(compgen -f -- "$cur"))  # slerp's operands are numbers
+    fi
+}
+complete -o filenames -F _keyrot keyrot

@@ -1,0 +1,53 @@
+#include "formats_help.hpp"
+
+#include <fmt/format.h>
+
+#include <array>
+#include <string_view>
+
+#include "io/layout.hpp"
+
+namespace keyrot {
+namespace {
+
+/// Each representation's fields in a JSON key object (the CSV columns come
+/// from io/layout, the names the readers and writers use).
+constexpr std::array<std::pair<rep, std::string_view>, 6> json_fields = {{
+    {rep::axis_angle, R"("axis": [x, y, z], "angle": a)"},
+    {rep::quat, R"("quat": [w, x, y, z] in the quat_order, or {"w": w, "x": x, "y": y, "z": z})"},
+    {rep::rotvec, R"("rotvec": [x, y, z])"},
+    {rep::euler, R"("euler": [e1, e2, e3], in the order of the sequence)"},
+    {rep::matrix, R"("matrix": [[m00, m01, m02], [m10, m11, m12], [m20, m21, m22]])"},
+    {rep::matrix4, R"("matrix": four rows of four, translation in the last column)"},
+}};
+
+std::string columns(rep r, quat_order order) { return fmt::format("{}", fmt::join(rotation_columns(r, order), ",")); }
+
+}  // namespace
+
+std::string formats_help() {
+    std::string out = "CSV: a header line of column names (any case, any order), then one key per line; blank lines\n"
+                      "and lines starting with '#' are skipped. The rotation's columns, by representation (--rep):\n";
+    for (const auto& [r, name] : names_of<rep>) {
+        out += fmt::format("  {:<12}{}", name, columns(r, quat_order::wxyz));
+        if (r == rep::quat) out += fmt::format("  (--quat-order xyzw: {})", columns(r, quat_order::xyzw));
+        if (r == rep::euler) out += "  (angles in the order of --euler's sequence)";
+        out += '\n';
+    }
+    out += fmt::format("Beside them: time or frame (at --key-fps); track (optional, names the track); {} (optional "
+                       "translation).\n",
+                       fmt::join(translation_columns, ","));
+    out += "\nJSON: a document {\"keys\": [KEY, ...]}, a bare array [KEY, ...], or {\"tracks\": {\"NAME\": {\"keys\": [...]}, "
+           "...}}.\nOptional document (or track) fields: \"angles\": \"degrees\" | \"radians\", \"euler\": \"ZYX\", "
+           "\"quat_order\":\n\"wxyz\" | \"xyzw\", \"fps\" (the rate of \"frame\"). A KEY holds \"time\" or \"frame\", "
+           "one rotation, and optionally\n\"translation\": [x, y, z]. The rotation's fields, by representation:\n";
+    for (const auto& [r, fields] : json_fields) out += fmt::format("  {:<12}{}\n", to_string(r), fields);
+    out += "\nNDJSON: one KEY object per line, with \"track\" when there are tracks; a first line without a rotation\n"
+           "holds the settings, as keyrot writes it.\n"
+           "\nA file's format is known by its extension (.csv, .json, .ndjson or .jsonl), else by its content.\n"
+           "keyrot reads all it writes: a JSON document with \"frames\" in place of \"keys\", and \"# keyrot {...}\" "
+           "lines\nstating the settings of a CSV file.\n";
+    return out;
+}
+
+}  // namespace keyrot
