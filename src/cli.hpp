@@ -3,7 +3,7 @@
 #include <iosfwd>
 #include <optional>
 
-#include "keyrot/app.hpp"
+#include "app/app.hpp"
 
 namespace keyrot {
 

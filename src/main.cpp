@@ -11,7 +11,7 @@
 
 #include "cli.hpp"
 #include "io/output.hpp"
-#include "keyrot/app.hpp"
+#include "app/app.hpp"
 #include "keyrot/error.hpp"
 
 namespace {

@@ -1,5 +1,5 @@
 // The commands run in-process, with streams and a scratch directory.
-#include "keyrot/app.hpp"
+#include "app/app.hpp"
 
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-#include "keyrot/app.hpp"
+#include "app/app.hpp"
 
 #include "app/commands.hpp"
 

@@ -9,7 +9,7 @@
 #include "io/document.hpp"
 #include "io/io.hpp"
 #include "io/source.hpp"
-#include "keyrot/app.hpp"
+#include "app/app.hpp"
 
 namespace keyrot::detail {
 

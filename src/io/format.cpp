@@ -1,4 +1,4 @@
-#include "keyrot/format.hpp"
+#include "io/format.hpp"
 
 #include <nlohmann/json.hpp>
 

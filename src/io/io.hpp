@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "io/layout.hpp"
-#include "keyrot/format.hpp"
+#include "io/format.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {

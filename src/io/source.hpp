@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-#include "keyrot/format.hpp"
+#include "io/format.hpp"
 
 namespace keyrot {
 

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "check.hpp"
-#include "keyrot/app.hpp"
+#include "app/app.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace keyrot;

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "keyrot/convert.hpp"
-#include "keyrot/format.hpp"
+#include "io/format.hpp"
 #include "keyrot/interpolate.hpp"
 #include "keyrot/resample.hpp"
 
