@@ -201,7 +201,8 @@ std::string whole_keys(const std::string& text) {
 
 /// The same from the streaming reader (parsed ahead on other threads
 /// after the first 1024 keys, where the document has one track); where it
-/// throws, the keys before and "declined".
+/// declines the document, the keys before and "declined"; where it meets an
+/// error, the keys before and "error" (read_json words it).
 std::string streamed_keys(const std::string& text, bool ahead = false) {
     std::istringstream in(text);
     std::ostringstream err;
@@ -214,9 +215,10 @@ std::string streamed_keys(const std::string& text, bool ahead = false) {
         const auto reader = ahead ? make_key_reader(in, format::json, o, warn, [] { return true; })
                                   : make_key_reader(in, format::json, o, warn);
         while (reader->next(name, k)) lines += key_line(name, reader->settings(), k);
+        if (reader->declined()) return lines + "declined";
         return (reader->named() ? "named\n" : "") + lines;
     } catch (const error&) {
-        return lines + "declined";
+        return lines + "error";
     }
 }
 
@@ -254,13 +256,16 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
              R"({"keys": []})", R"({"tracks": {}})", R"({"tracks": {"a": {"fps": 2}}})", R"({"other": 1})", R"({"keys": 5})",
              R"({"keys": [)" + k + "]} x", R"({"keys": [)" + k, R"({"keys": [)" + k + ",]}", R"({"keys": [)" + k + " " + k2 + "]}",
              "\xEF\xBB\xBF[" + k + "]", R"({"note": "\u00e9", "keys": [)" + k + "]}", R"({"tracks": {"\u00e9": [)" + k + "]}}",
-             R"({"note": [[[[[[[[[[1]]]]]]]]]], "keys": [)" + k + "]}", R"({"keys": [{"time": 0, "quat": [1, 0, 0]}]})",
-             R"({"tracks": {"a\u0001": [)" + k + "]}}", "42", "\"keys\"", "", "[" + k + ", " + k2 + ", 7]",
+             R"({"note": [[[[[[[[[[1]]]]]]]]]], "keys": [)" + k + "]}",
+             R"({"tracks": {"a\u0001": [)" + k + "]}}", "42", "\"keys\"", "",
              "[" + k + "]\n" + std::string(1, '\0') + "x", "[" + k + "]" + std::string(1, '\0'),
          }) {
         CAPTURE(doc);
         CHECK(streamed_keys(doc).ends_with("declined"));
     }
+    // Errors in the keys it reads: thrown, for read_json to word (after the keys before them).
+    CHECK(streamed_keys(R"({"keys": [{"time": 0, "quat": [1, 0, 0]}]})") == "error");
+    CHECK(streamed_keys("[" + k + ", " + k2 + ", 7]") == streamed_keys("[" + k + ", " + k2 + "]") + "error");
     // Read in blocks of 64 KB: a block ends in each place of a setting, and of a key.
     std::string keys;
     for (int i = 0; i < 1400; ++i)
@@ -279,9 +284,13 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
     CHECK(streamed_keys(two, true).find("\nb 1 - 30 tracks.b.keys[1399] 1399 ") != std::string::npos);
     CHECK(streamed_keys(two, true) == whole_keys(two));
     // Parsed ahead, an error still comes after the keys before it (the
-    // document is then read whole, to say what is wrong).
+    // document is then read whole, to say what is wrong), and so does a
+    // key flat_json declines.
     const std::string bad = "[" + keys + R"(, {"time": 1400, "quat": [1, 0, 0]}])";
-    CHECK(streamed_keys(bad, true) == streamed_keys("[" + keys + "]") + "declined");
+    CHECK(streamed_keys(bad, true) == streamed_keys("[" + keys + "]") + "error");
+    const std::string escaped = "[" + keys + R"(, {"time": 1400, "quat": [1, 0, 0, 0], "note": "\u00e9"}])";
+    CHECK(streamed_keys(escaped, true) == streamed_keys("[" + keys + "]") + "declined");
+    CHECK(streamed_keys(escaped) == streamed_keys("[" + keys + "]") + "declined");
     CHECK(whole_keys(bad) == "in: [1400]: 'quat': expected an array of 4 numbers, got 3 elements");
 }
 

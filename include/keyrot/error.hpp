@@ -4,7 +4,6 @@
 #include <mutex>
 #include <ostream>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -61,22 +60,5 @@ private:
     std::mutex mutex_;
     std::set<std::string> said_;
 };
-
-/// Runs attempt(warnings&), a way of reading that may not take the input,
-/// with warnings of its own, held back: printed, and counted as said in
-/// `warn`, when it returns true; dropped when it returns false or throws
-/// error (the input is then read another way, which says what it says).
-template <class Attempt>
-bool with_held_warnings(warnings& warn, Attempt&& attempt) {
-    std::ostringstream held;
-    warnings own(held, warn.source());
-    try {
-        if (!attempt(own)) return false;
-    } catch (const error&) {
-        return false;
-    }
-    warn.adopt(own, held.str());
-    return true;
-}
 
 }  // namespace keyrot

@@ -20,6 +20,7 @@
 #include "app/commands.hpp"
 #include "app/plan.hpp"
 #include "ground/thread_start.hpp"
+#include "ground/held_warnings.hpp"
 #include "io/document.hpp"
 #include "io/open.hpp"
 #include "io/output.hpp"
@@ -165,40 +166,43 @@ struct transform_plan {
 };
 
 /// Pass 1 over a streamed input: every key validated, the facts learnt.
-/// Stops early (interleaved = true) when a track comes back after another
-/// one began: such input is then read whole.
-document_facts scan(const transform_plan& p, const input_source& src, warnings& warn, bool& interleaved) {
+/// Stops early (read_whole = true) when a track comes back after another
+/// one began, or when the reader declines the document (a JSON document
+/// the streaming reader does not take): such input is then read whole.
+document_facts scan(const transform_plan& p, const input_source& src, warnings& warn, bool& read_whole) {
     const auto stream = src.open();
     const auto reader = make_key_reader(*stream, p.in, p.reading, warn, [] { return true; });
     document_facts d;
     std::set<std::string> seen;
     std::string name;
     raw_key raw;
-    interleaved = false;
+    read_whole = false;
     while (reader->next(name, raw)) {
         key k = make_key(raw, reader->settings(), warn);
         if (!d.tracks.empty() && d.tracks.back().name == name) {
             check_order(d.tracks.back().last, k, src.source());
         } else if (!seen.insert(name).second) {
-            interleaved = true;
+            read_whole = true;
             return d;
         }
         d.add(name, reader->settings().euler, reader->settings().key_fps, std::move(k));
     }
+    if ((read_whole = reader->declined())) return d;
     if (d.tracks.empty()) throw input_error(where(src.source(), reader->start()), "no keys: expected at least one key");
     d.named = reader->named();
     return d;
 }
 
 /// Pass 1 over a JSON document, where the streaming reader takes it. False
-/// when it does not, or finds an error: the document is then read whole,
-/// which says what is wrong as it always has. Its warnings are held back
-/// until it is known which.
+/// when it declines the document, or meets an error there: the document is
+/// then read whole, which says what is wrong as read_json does (syntax
+/// anywhere before content). Its warnings are held back until it is known
+/// which.
 bool scan_json(const transform_plan& p, const input_source& src, document_facts& d, warnings& warn) {
     return with_held_warnings(warn, [&](warnings& attempt) {
-        bool interleaved = false;
-        d = scan(p, src, attempt, interleaved);
-        return !interleaved;
+        bool read_whole = false;
+        d = scan(p, src, attempt, read_whole);
+        return !read_whole;
     });
 }
 
@@ -207,7 +211,7 @@ bool scan_json(const transform_plan& p, const input_source& src, document_facts&
 /// the keys are known to be good; without (one pass), each track is taken
 /// to have translations if its first key has one, and the keys are checked
 /// as pass 1 checks them. Returns the facts seen, or nothing when a track
-/// comes back after another one began.
+/// comes back after another one began, or the reader declines the document.
 std::optional<document_facts> stream_rows(const transform_plan& p, const input_source& src,
                                           const document_facts* known, table_output& rows, warnings& warn) {
     const auto stream = src.open();
@@ -238,6 +242,7 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
         p.rows->add(k);
         seen.add(name, settings.euler, settings.key_fps, std::move(k));
     }
+    if (reader->declined()) return std::nullopt;
     if (!seen.tracks.empty()) p.rows->end_track();
     seen.named = reader->named();
     return seen;
@@ -259,46 +264,42 @@ void whole_rows(const transform_plan& p, const document& doc, table_output& rows
 /// resample or convert from streamed input into the plan's file in one
 /// pass. The writer needs facts before the first row that pass 1 would
 /// gather (track names, translations, convert's time columns); they are
-/// guessed from the first key instead. When a guess proves wrong or
-/// anything fails, the temporary file is dropped and false returned: the
-/// two passes then give the output or the error they always give. Warnings
-/// are held back until the end for the same reason.
-bool transform_in_one_pass(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
-    std::ostringstream held;
-    warnings warn(held, src.source());
-    try {
+/// guessed from the first key instead. When a guess proves wrong, the
+/// reader declines the document, or anything fails, the temporary file is
+/// dropped and false returned: the two passes then give the output or the
+/// error they always give. Warnings are held back until it is known which.
+bool transform_in_one_pass(const transform_plan& p, const input_source& src, std::ostream& out, warnings& warn) {
+    return with_held_warnings(warn, [&](warnings& attempt) {
         document_facts guess;
         {
             const auto stream = src.open();
-            const auto reader = make_key_reader(*stream, p.in, p.reading, warn);
+            const auto reader = make_key_reader(*stream, p.in, p.reading, attempt);
             std::string name;
             raw_key raw;
             if (!reader->next(name, raw)) return false;
-            guess.add(name, reader->settings().euler, reader->settings().key_fps, make_key(raw, reader->settings(), warn));
+            guess.add(name, reader->settings().euler, reader->settings().key_fps,
+                      make_key(raw, reader->settings(), attempt));
             guess.named = reader->named();
         }
-        const auto table =
-            open_table(p.out, p.target, out, p.rows->table(guess), writing(p.flags, guess.tracks.front().euler), warn);
-        const std::optional<document_facts> seen = stream_rows(p, src, nullptr, *table, warn);
+        const auto table = open_table(p.out, p.target, out, p.rows->table(guess),
+                                      writing(p.flags, guess.tracks.front().euler), attempt);
+        const std::optional<document_facts> seen = stream_rows(p, src, nullptr, *table, attempt);
         if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
         p.rows->check(*seen, src.source());
         for (const auto& t : seen->tracks)
             if (t.translation != t.first.translation.has_value()) return false;
         table->finish();
-    } catch (const error&) {
-        return false;  // the two passes say what is wrong, in their order
-    }
-    err << held.str();
-    return true;
+        return true;
+    });
 }
 
 /// resample or convert one input into the plan's file or `out`.
 void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
-    if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, err)) return;
+    warnings warn(err, src.source());
+    if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn)) return;
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or
     // in a pipe or device named by -o).
-    warnings warn(err, src.source());
     bool read_whole = false;
     document_facts d;
     std::optional<document> whole;
@@ -311,7 +312,8 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
     p.rows->check(d, src.source());
     const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing(p.flags, d.tracks.front().euler), warn);
     if (whole) whole_rows(p, *whole, *table);
-    else stream_rows(p, src, &d, *table, warn);
+    else if (!stream_rows(p, src, &d, *table, warn))  // pass 1 took it: the document is not what it was
+        throw error(changed_while_read(src.source()));
     table->finish();
 }
 

@@ -4,6 +4,7 @@
 #include <new>
 #include <optional>
 
+#include "ground/held_warnings.hpp"
 #include "io/io_json.hpp"
 #include "io/open.hpp"
 
@@ -11,8 +12,9 @@ namespace keyrot {
 namespace {
 
 /// Keys from a key_reader (line-based input, or a streamed JSON document),
-/// parsed ahead on other threads as streamed input is.
-void read_keys(document& result, std::istream& in, const read_options& ro, warnings& warn) {
+/// parsed ahead on other threads as streamed input is. False when the
+/// reader declines the document (`result` then holds nothing of it).
+bool read_keys(document& result, std::istream& in, const read_options& ro, warnings& warn) {
     const auto reader = make_key_reader(in, result.fmt, ro, warn, [] { return true; });
     std::map<std::string, std::size_t> index;
     std::vector<track_builder> tracks;
@@ -23,9 +25,11 @@ void read_keys(document& result, std::istream& in, const read_options& ro, warni
         if (added) tracks.emplace_back(name, raw.at, reader->settings());  // a JSON track's may be its own
         tracks[it->second].add(raw, warn);
     }
+    if (reader->declined()) return false;
     if (tracks.empty()) throw input_error(where(result.source, reader->start()), "no keys: expected at least one key");
     for (track_builder& t : tracks) result.tracks.push_back(std::move(t).finish(warn));
     result.named = reader->named();
+    return true;
 }
 
 /// A JSON document's tracks, one after another.
@@ -49,14 +53,14 @@ private:
 };
 
 /// A JSON document's keys streamed, as line-based input's are. False when
-/// the reader does not take the document, or finds an error: it is then
-/// read whole, which says what is wrong as it always has. Its warnings are
-/// held back until it is known which.
+/// the reader declines the document, or meets an error there: it is then
+/// read whole, which says what is wrong as read_json does (syntax anywhere
+/// before content). Its warnings are held back until it is known which.
 bool read_streamed_json(document& result, const input_source& src, const read_options& ro, warnings& warn) {
     return with_held_warnings(warn, [&](warnings& attempt) {
         document streamed{result.source, result.fmt, false, {}};
         try {
-            read_keys(streamed, *src.open(), ro, attempt);
+            if (!read_keys(streamed, *src.open(), ro, attempt)) return false;
         } catch (const std::bad_alloc&) {  // the parsing threads', say, which the whole reader does without
             return false;
         }

@@ -61,6 +61,11 @@ public:
     /// document's own fields over the flags; for line-based input, the
     /// flags' for every key.
     virtual const key_settings& settings() const = 0;
+    /// Once next() returned false: the reader stopped short of the end of
+    /// a document it does not read as read_json does (a JSON document the
+    /// streaming reader does not take), and what it gave does not count:
+    /// the document is to be read whole. Line-based input never is.
+    virtual bool declined() const { return false; }
 };
 
 /// Frame / key time columns of a table.

@@ -24,10 +24,6 @@ namespace {
 
 std::string errno_text() { return std::strerror(errno); }
 
-std::string changed(const std::string& source) {
-    return fmt::format("'{}' changed while keyrot was reading it: expected it to stay as it was until keyrot is done", source);
-}
-
 /// What tells a file's content changed: its size and modification time.
 std::pair<off_t, std::timespec> version_of(int fd) {
     struct stat st {};
@@ -47,6 +43,10 @@ bool write_all_at(int fd, const char* data, std::size_t size, off_t offset) {
 }
 
 }  // namespace
+
+std::string changed_while_read(const std::string& source) {
+    return fmt::format("'{}' changed while keyrot was reading it: expected it to stay as it was until keyrot is done", source);
+}
 
 /// An input that can be read only once (a pipe, standard input), copied
 /// into an unlinked temporary file as the first pass reads it: later passes
@@ -81,7 +81,7 @@ protected:
         do got = ::pread(fd_, buffer_.data(), std::min<std::size_t>(buffer_.size(), static_cast<std::size_t>(end - offset_)), offset_);
         while (got < 0 && errno == EINTR);
         if (got < 0) throw error(fmt::format("cannot read '{}': {}", source_, errno_text()));
-        if (got == 0) throw error(changed(source_));
+        if (got == 0) throw error(changed_while_read(source_));
         offset_ += got;
         setg(buffer_.data(), buffer_.data(), buffer_.data() + got);
         return traits_type::to_int_type(*gptr());
@@ -209,7 +209,7 @@ std::unique_ptr<std::istream> input_source::open() const {
     if (!opened_) {
         size_ = size, modified_ = modified, opened_ = true;
     } else if (size != size_ || modified.tv_sec != modified_.tv_sec || modified.tv_nsec != modified_.tv_nsec) {
-        throw error(changed(source_));
+        throw error(changed_while_read(source_));
     }
     return std::make_unique<descriptor_stream>(fd_, start_, std::max(start_, size_), nullptr, source_);
 }

@@ -22,6 +22,9 @@ inline bool is_standard_stream(std::string_view name) noexcept { return name == 
 /// How messages name the input `name`: the path, or "<stdin>" for "-".
 inline std::string source_name(const std::string& name) { return is_standard_stream(name) ? "<stdin>" : name; }
 
+/// The message for an input that changed while keyrot read it.
+std::string changed_while_read(const std::string& source);
+
 class input_source {
 public:
     /// `name` is a path or "-" (standard input, read from `stdin_stream`; in

@@ -29,7 +29,8 @@ std::string describe(const std::string& track, const keyrot::key_settings& s, co
     return out + '\n';
 }
 
-/// The keys the streaming reader reads, and "declined" where it throws.
+/// The keys the streaming reader reads; "declined" where it declines the
+/// document, or meets an error (read_json words it).
 std::string streamed(std::string_view text, const keyrot::read_options& opts, keyrot::warnings& warn) {
     std::istringstream in{std::string(text)};
     std::string out, name;
@@ -37,6 +38,7 @@ std::string streamed(std::string_view text, const keyrot::read_options& opts, ke
     try {
         const auto reader = keyrot::make_key_reader(in, keyrot::format::json, opts, warn);
         while (reader->next(name, k)) out += describe(name, reader->settings(), k);
+        if (reader->declined()) return "declined";
         return (reader->named() ? "named\n" : "") + out;
     } catch (const keyrot::error&) {
         return "declined";

@@ -67,6 +67,8 @@ public:
     location start() const override { return inner_->start(); }
     /// The parser's for the key given last, or the inner reader's.
     const key_settings& settings() const override { return settings_ ? *settings_ : inner_->settings(); }
+    /// Asked once next() returned false: the threads have stopped reading.
+    bool declined() const override { return inner_->declined(); }
 
 private:
     static constexpr std::size_t inline_limit = 1024, batch_lines = 1024, max_batches = 4;
