@@ -248,12 +248,12 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
     return seen;
 }
 
-/// The tracks of an input read whole.
-void whole_rows(const transform_plan& p, const document& doc, table_output& rows) {
+/// The tracks of an input read whole, whose facts are `d`.
+void whole_rows(const transform_plan& p, const document& doc, const document_facts& d, table_output& rows) {
     const auto row = [&](const sample& s) { rows.row(s); };
-    for (const track& t : doc.tracks) {
-        bool translation = false;
-        for (const key& k : t.keys) translation = translation || k.translation.has_value();
+    for (std::size_t i = 0; i < doc.tracks.size(); ++i) {
+        const track& t = doc.tracks[i];
+        const bool translation = d.tracks[i].translation;
         rows.begin_track(t.name, translation);
         p.rows->begin_track(t.euler, translation, row);
         for (const key& k : t.keys) p.rows->add(k);
@@ -311,7 +311,7 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
     }
     p.rows->check(d, src.source());
     const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing(p.flags, d.tracks.front().euler), warn);
-    if (whole) whole_rows(p, *whole, *table);
+    if (whole) whole_rows(p, *whole, d, *table);
     else if (!stream_rows(p, src, &d, *table, warn))  // pass 1 took it: the document is not what it was
         throw error(changed_while_read(src.source()));
     table->finish();

@@ -52,13 +52,14 @@ private:
     std::optional<track_builder> current_;
 };
 
-/// A JSON document's keys streamed, as line-based input's are. False when
+/// A JSON document's tracks streamed, as line-based input's are. None when
 /// the reader declines the document, or meets an error there: it is then
 /// read whole, which says what is wrong as read_json does (syntax anywhere
 /// before content). Its warnings are held back until it is known which.
-bool read_streamed_json(document& result, const input_source& src, const read_options& ro, warnings& warn) {
-    return with_held_warnings(warn, [&](warnings& attempt) {
-        document streamed{result.source, result.fmt, false, {}};
+std::optional<document> read_streamed_json(const input_source& src, const read_options& ro, warnings& warn) {
+    std::optional<document> result;
+    with_held_warnings(warn, [&](warnings& attempt) {
+        document streamed{src.source(), format::json, false, {}};
         try {
             if (!read_keys(streamed, *src.open(), ro, attempt)) return false;
         } catch (const std::bad_alloc&) {  // the parsing threads', say, which the whole reader does without
@@ -67,6 +68,7 @@ bool read_streamed_json(document& result, const input_source& src, const read_op
         result = std::move(streamed);
         return true;
     });
+    return result;
 }
 
 }  // namespace
@@ -89,9 +91,8 @@ document read_document(std::istream& in, format f, const read_options& ro, warni
 
 document read_document(const input_source& src, format f, const read_options& ro, warnings& warn,
                        json_reading json) {
-    document result{src.source(), f, false, {}};
-    if (f == format::json && json == json_reading::streamed_first && read_streamed_json(result, src, ro, warn))
-        return result;
+    if (f == format::json && json == json_reading::streamed_first)
+        if (std::optional<document> streamed = read_streamed_json(src, ro, warn)) return std::move(*streamed);
     return read_document(*src.open(), f, ro, warn);
 }
 
