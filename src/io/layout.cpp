@@ -1,7 +1,5 @@
 #include "io/layout.hpp"
 
-#include "io/fast/number_writer.hpp"
-
 namespace keyrot {
 namespace {
 
@@ -79,11 +77,6 @@ rotation_values values_of(quat q, const std::optional<vec3>& translation, const 
         }
     }
     return out;
-}
-
-void append_number(std::string& out, double v, std::optional<int> precision) {
-    char buf[max_number_chars];
-    out.append(buf, static_cast<std::size_t>(write_number(buf, v, precision) - buf));
 }
 
 }  // namespace keyrot

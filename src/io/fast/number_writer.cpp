@@ -1,4 +1,5 @@
 #include "io/fast/number_writer.hpp"
+#include "io/layout.hpp"
 
 #include <fmt/format.h>
 
@@ -272,6 +273,13 @@ char* write_number(char* out, double v, std::optional<int> precision) {
         return write_shortest(out, v);
     }
     return write_fixed(out, v, *precision);
+}
+
+// Declared in io/layout.hpp, with how rotations are laid out, for
+// everything that prints a number outside a row.
+void append_number(std::string& out, double v, std::optional<int> precision) {
+    char buf[max_number_chars];
+    out.append(buf, static_cast<std::size_t>(write_number(buf, v, precision) - buf));
 }
 
 }  // namespace keyrot
