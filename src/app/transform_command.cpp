@@ -19,8 +19,8 @@
 
 #include "app/commands.hpp"
 #include "app/plan.hpp"
-#include "ground/thread_start.hpp"
 #include "ground/held_warnings.hpp"
+#include "ground/thread_start.hpp"
 #include "io/document.hpp"
 #include "io/open.hpp"
 #include "io/output.hpp"
@@ -187,7 +187,8 @@ document_facts scan(const transform_plan& p, const input_source& src, warnings& 
         }
         d.add(name, reader->settings().euler, reader->settings().key_fps, std::move(k));
     }
-    if ((read_whole = reader->declined())) return d;
+    read_whole = reader->declined();
+    if (read_whole) return d;
     if (d.tracks.empty()) throw input_error(where(src.source(), reader->start()), "no keys: expected at least one key");
     d.named = reader->named();
     return d;
