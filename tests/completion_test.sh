@@ -60,6 +60,11 @@ for seq in $sequences; do
         { echo "FAIL --euler $seq"; failures=$((failures + 1)); }
 done
 
+# --flag=value, which bash splits at '='.
+same "--rep=" "$(offers keyrot resample --rep '')" "$(offers keyrot resample --rep =)"
+same "--rep=q" "quat" "$(offers keyrot resample --rep = q)"
+same "--euler=Z" "$(printf 'ZXY\nZXZ\nZYX\nZYZ')" "$(offers keyrot convert --euler = Z)"
+
 # Files where an input or -o goes, directories for --output-dir, nothing for numbers.
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT

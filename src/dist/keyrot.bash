@@ -4,6 +4,12 @@
 
 _keyrot() {
     local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD - 1]}
+    # --flag=value: bash splits it at '=' into "--flag" "=" "value".
+    if [[ $cur == = ]]; then
+        cur=""
+    elif [[ $prev == = ]] && ((COMP_CWORD >= 2)); then
+        prev=${COMP_WORDS[COMP_CWORD - 2]}
+    fi
     local commands="resample convert slerp compare info help"
     local command="" i
     for ((i = 1; i < COMP_CWORD; i++)); do
