@@ -10,6 +10,7 @@
 #include <span>
 
 #include "formats_help.hpp"
+#include "ground/text.hpp"
 
 namespace keyrot {
 
@@ -248,8 +249,10 @@ std::string help_text(const CLI::App& app, CLI::AppFormatMode mode = CLI::AppFor
 }
 
 /// Edits from a to b: insertions, deletions, substitutions, and swaps of
-/// two neighbouring letters ("--fsp" is one edit from "--fps").
-std::size_t edit_distance(std::string_view a, std::string_view b) {
+/// two neighbouring letters ("--fsp" is one edit from "--fps"); case does
+/// not count ("FORMATS" is "formats").
+std::size_t edit_distance(std::string_view a_text, std::string_view b_text) {
+    const std::string a = ascii_lower(a_text), b = ascii_lower(b_text);
     std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
     for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
     for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;

@@ -66,6 +66,7 @@ for args in "help nonsense" "help formats extra" "hlep"; do
     [[ $status == 2 && $(echo "$err" | wc -l) == 1 && $err == keyrot:* ]] && echo "ok   keyrot $args: $err" ||
         fail "keyrot $args: status $status, '$err'"
 done
+[[ $(keyrot help FORMTS 2>&1) == *"(did you mean 'formats'?)" ]] || fail "keyrot help FORMTS: $(keyrot help FORMTS 2>&1)"
 [[ $(keyrot help) == "$(keyrot --help)" ]] || fail "keyrot help differs from keyrot --help"
 [[ $(keyrot help convert) == "$(keyrot convert --help)" ]] || fail "keyrot help convert differs from keyrot convert --help"
 
