@@ -306,6 +306,12 @@ std::vector<std::string> command_names() {
     return names;
 }
 
+/// The commands as a message lists them: "resample, convert, slerp, compare or info".
+std::string listed_commands() {
+    const std::vector<std::string> names = command_names();
+    return fmt::format("{} or {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
+}
+
 /// `keyrot help [TOPIC]`: the program's help, a command's, or the formats'.
 void print_help_topic(const CLI::App& app, std::span<CLI::App* const> subs, int argc, const char* const* argv,
                       std::ostream& out) {
@@ -326,9 +332,8 @@ void print_help_topic(const CLI::App& app, std::span<CLI::App* const> subs, int 
         }
     std::vector<std::string> topics = command_names();
     topics.emplace_back("formats");
-    throw usage_error(fmt::format("help: unknown topic '{}': expected formats, resample, convert, slerp, compare or "
-                                  "info (did you mean '{}'?)",
-                                  excerpt(topic), nearest(topic, topics)));
+    throw usage_error(fmt::format("help: unknown topic '{}': expected formats, {} (did you mean '{}'?)", excerpt(topic),
+                                  listed_commands(), nearest(topic, topics)));
 }
 
 }  // namespace
@@ -351,9 +356,8 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
     if (!known && !first.empty() && first.front() != '-' && first != "help") {
         std::vector<std::string> names = command_names();
         names.emplace_back("help");
-        throw usage_error(fmt::format("unknown command '{}': expected resample, convert, slerp, compare or info "
-                                      "(did you mean '{}'?)",
-                                      excerpt(first), nearest(first, names)));
+        throw usage_error(fmt::format("unknown command '{}': expected {} (did you mean '{}'?)", excerpt(first),
+                                      listed_commands(), nearest(first, names)));
     }
     std::array<CLI::App*, commands.size()> subs{};
     for (std::size_t i = 0; i < commands.size(); ++i) {
@@ -377,7 +381,7 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
         out << "keyrot " << version << '\n';
         return std::nullopt;
     } catch (const CLI::ParseError& e) {
-        if (!known) throw usage_error("expected a command: resample, convert, slerp, compare or info (see keyrot --help)");
+        if (!known) throw usage_error(fmt::format("expected a command: {} (see keyrot --help)", listed_commands()));
         std::string what = e.what();
         if (what == "ACTUAL is required") what = "ACTUAL is missing: expected two files, EXPECTED ACTUAL";
         if (dynamic_cast<const CLI::ExtrasError*>(&e))

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "ground/text.hpp"
+
 namespace keyrot {
 
 void check_track_name(const std::string& name, const std::string& where) {

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "ground/text.hpp"
 #include "io/fast/flat_json.hpp"
 #include "io/fast/number_writer.hpp"
 #include "io/json_keys.hpp"

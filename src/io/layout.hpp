@@ -2,17 +2,12 @@
 // How rotations are laid out in files, shared by every reader and writer:
 // quaternion order, the CSV columns of each representation, the values
 // written for a rotation, and how numbers are printed.
-#include <algorithm>
 #include <array>
-#include <charconv>
-#include <cmath>
-#include <istream>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 
-#include "ground/text.hpp"
 #include "keyrot/convert.hpp"
 #include "keyrot/quat.hpp"
 
@@ -49,8 +44,5 @@ rotation_values values_of(quat q, const std::optional<vec3>& translation, const 
 /// 0.1 + 0.2, {}) appends "0.30000000000000004"; (s, 2.50, 3) appends "2.5".
 /// Never "-0". Throws std::logic_error for NaN or infinity (a bug, never printed).
 void append_number(std::string& out, double v, std::optional<int> precision);
-
-
-
 
 }  // namespace keyrot

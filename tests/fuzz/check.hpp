@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "ground/text.hpp"
 #include "io/layout.hpp"
 #include "keyrot/track.hpp"
 

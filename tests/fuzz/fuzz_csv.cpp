@@ -13,6 +13,7 @@
 #include <string_view>
 
 #include "check.hpp"
+#include "ground/text.hpp"
 #include "io/document.hpp"
 
 namespace {
