@@ -20,7 +20,7 @@ namespace {
 
 /// The flag values as CLI11 fills them, before they become typed options.
 struct raw_flags {
-    std::string from, to, rep = "axis-angle", euler, out_euler, quat_order = "wxyz", method = "slerp",
+    std::string from, to, rep = "axis-angle", euler, out_euler, quat_order = "wxyz", method,
                         path = "shortest", from_rep = "quat", report;
     bool out_degrees = false, out_radians = false;
     std::optional<int> precision;
@@ -45,9 +45,10 @@ void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
     sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
     sub.add_option("--max-bytes", o.max_bytes,
-                   fmt::format("most bytes a CSV or NDJSON line, or a JSON document read whole, may take (default {}: "
+                   fmt::format("most bytes a CSV or NDJSON line, a JSON document or a glTF file read whole, may take (default {}: "
                                "{} MiB)",
                                default_max_bytes, default_max_bytes >> 20));
+    sub.add_option("--animation", o.animation, "glTF: the one animation to read, by name or index (default: all)");
 }
 
 /// The angle and quaternion conventions of the input (and of the output,
@@ -79,8 +80,12 @@ void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
 
 void add_method_flags(CLI::App& sub, raw_flags& f) {
     sub.option_defaults()->group("Interpolation");
-    sub.add_option("--method", f.method, fmt::format("interpolation method (default: {})", f.method))
-        ->check(CLI::IsMember(names<method>()));
+    // cubicspline is not offered: it needs the tangents only a glTF file's keys have.
+    std::vector<std::string> methods = names<method>();
+    std::erase(methods, to_string(method::cubicspline));
+    sub.add_option("--method", f.method,
+                   fmt::format("interpolation method (default: {}, or a glTF sampler's own)", to_string(method::slerp)))
+        ->check(CLI::IsMember(methods));
     sub.add_option("--path", f.path,
                    fmt::format("shortest: consecutive keys in one hemisphere; direct: signs as given (default: {})",
                                f.path))
@@ -116,7 +121,7 @@ void finish(options& o, const raw_flags& f) {
     }
     o.from_rep = *parse<rep>(f.from_rep);
     o.report_json = f.report == "json";
-    o.how = *parse<method>(f.method);
+    if (!f.method.empty()) o.how = parse<method>(f.method);
     o.way = *parse<path>(f.path);
     check_rate("--fps", o.fps);
     if (o.max_bytes < 1) throw usage_error("--max-bytes: expected at least 1 byte, got 0");

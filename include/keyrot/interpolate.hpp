@@ -7,25 +7,23 @@
 #include <vector>
 
 #include "keyrot/convert.hpp"
+#include "keyrot/method.hpp"
 #include "keyrot/quat.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {
 
-enum class method { slerp, nlerp, squad, step, euler };
-template <>
-inline constexpr std::array<enum_name<method>, 5> names_of<method> = {{{method::slerp, "slerp"},
-                                                                   {method::nlerp, "nlerp"},
-                                                                   {method::squad, "squad"},
-                                                                   {method::step, "step"},
-                                                                   {method::euler, "euler"}}};
-
-enum class path { shortest, direct };
-template <>
-inline constexpr std::array<enum_name<path>, 2> names_of<path> = {{{path::shortest, "shortest"}, {path::direct, "direct"}}};
 /// Throws usage_error for method::euler without an Euler sequence:
 /// check_method(method::euler, std::nullopt) says "--method euler needs an Euler sequence".
 void check_method(method m, const std::optional<euler_seq>& seq);
+
+/// glTF's cubic Hermite spline between values v0 at s = 0 and v1 at s = 1,
+/// with tangents b0 (v0's out-tangent) and a1 (v1's in-tangent) per second,
+/// over a key interval of `seconds`: (2s^3 - 3s^2 + 1) v0 + seconds (s^3 -
+/// 2s^2 + s) b0 + (-2s^3 + 3s^2) v1 + seconds (s^3 - s^2) a1, component-wise.
+std::array<double, 4> hermite(const std::array<double, 4>& v0, const std::array<double, 4>& b0,
+                              const std::array<double, 4>& v1, const std::array<double, 4>& a1, double seconds,
+                              double s) noexcept;
 
 /// Spherical linear interpolation from a to b, prepared once per pair of
 /// keys: Szeliski's Algorithm 2.1 with the relative rotation's axis and
@@ -74,6 +72,7 @@ private:
     method how_ = method::slerp;
     quat s0_, s1_;                       // squad: the control points
     std::array<double, 3> e0_{}, e1_{};  // euler: the keys' angles
+    spline_key spline0_, spline1_;       // cubicspline: the keys as the spline passes them
     euler_seq seq_;
 };
 
@@ -90,7 +89,8 @@ private:
 };
 
 /// Turns a track's keys, as they arrive, into segments: the sign of each key
-/// set by the path, squad's control points (one key of look-ahead), Euler
+/// set by the path (cubicspline keeps the file's, which its tangents are
+/// of), squad's control points (one key of look-ahead), Euler
 /// angles for --method euler. Memory stays a few keys.
 class segment_builder {
 public:
@@ -108,6 +108,7 @@ private:
         double time;
         quat q, s;
         std::array<double, 3> e;
+        spline_key spline;  // cubicspline
     };
     method how_;
     path way_;

@@ -17,6 +17,9 @@ struct resample_options {
     /// At most this many frames per track (116 hours at 24 fps), so that a
     /// typo in a time fails at once instead of writing for hours.
     double max_frames = 1e7;
+    /// How translations are interpolated, where not as `how` says: step
+    /// holds, cubicspline is Hermite, any other method is linear.
+    std::optional<method> translation_how = std::nullopt;
 };
 
 /// Where frames go as they are made.
@@ -62,7 +65,13 @@ private:
     double last_time_ = 0;
     quat last_key_, previous_;
     bool emitted_ = false;
-    std::deque<std::pair<double, vec3>> translation_keys_;  // the ones later frames may still need
+    struct translation_key {
+        double time;
+        vec3 value, in, out;  // in, out: cubicspline's tangents
+    };
+    vec3 translation_between(const translation_key& a, const translation_key& b, double time) const;
+    method translation_how_;
+    std::deque<translation_key> translation_keys_;  // the ones later frames may still need
     std::deque<sample> pending_;                             // frames waiting for a translation key
 };
 

@@ -11,6 +11,7 @@
 
 #include "keyrot/convert.hpp"
 #include "keyrot/error.hpp"
+#include "keyrot/method.hpp"
 #include "keyrot/quat.hpp"
 
 namespace keyrot {
@@ -51,6 +52,14 @@ struct raw_track {
     key_settings settings;
 };
 
+/// A glTF CUBICSPLINE key as its spline passes it: the rotation as stored
+/// (not normalised), and the tangents, derivatives per second of the
+/// quaternion's components (w, x, y, z) and of the translation.
+struct spline_key {
+    quat rotation{0, 0, 0, 0}, rotation_in{0, 0, 0, 0}, rotation_out{0, 0, 0, 0};
+    vec3 translation_in, translation_out;
+};
+
 struct key {
     location at;                  ///< as raw_key::at
     double time = 0;              ///< seconds
@@ -62,6 +71,16 @@ struct key {
     /// The Euler angles as given (radians), for --method euler.
     std::optional<std::array<double, 3>> euler;
     bool renormalised = false;  ///< input norm differed from 1 by > tol::unit_norm
+    std::optional<spline_key> spline;  ///< glTF CUBICSPLINE keys only
+};
+
+/// How a file says a track is interpolated (glTF's samplers): the
+/// rotation's method, and the translation's (step holds, cubicspline is
+/// Hermite, any other is linear).
+struct track_interpolation {
+    method rotation = method::slerp;
+    method translation = method::slerp;
+    bool operator==(const track_interpolation&) const = default;
 };
 
 struct track {
@@ -69,6 +88,7 @@ struct track {
     std::optional<euler_seq> euler;  ///< the sequence in force for this track
     std::vector<key> keys;
     double key_fps = 24;  ///< the rate its keys' frame numbers count at
+    std::optional<track_interpolation> interpolation = std::nullopt;  ///< the file's own, where it states one
 };
 
 /// One output row, what the sampler hands the writers: a resampled frame

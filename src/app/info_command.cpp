@@ -1,6 +1,7 @@
 // info: what an input holds, track by track.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <ostream>
 
 #include "app/commands.hpp"
@@ -23,6 +24,16 @@ std::string rep_list(const std::vector<rep>& reps) {
     return fmt::format("{}", fmt::join(names, ", "));
 }
 
+bool has_translation(const track& t) {
+    return std::any_of(t.keys.begin(), t.keys.end(), [](const key& k) { return k.translation.has_value(); });
+}
+
+/// "slerp" for a glTF LINEAR sampler, as --method names it.
+std::string interpolation_text(const track_interpolation& i, bool translation) {
+    return translation ? fmt::format("rotation {}, translation {}", to_string(i.rotation), to_string(i.translation))
+                       : fmt::format("rotation {}", to_string(i.rotation));
+}
+
 std::string info_text(const document& doc, const std::vector<track_info>& infos, std::optional<int> precision) {
     auto num = [precision](double v) {
         std::string s;
@@ -32,9 +43,12 @@ std::string info_text(const document& doc, const std::vector<track_info>& infos,
     // (printable: a file name's control bytes must not reach a terminal raw)
     std::string out = fmt::format("{}: {} track{}, {}\n", printable(doc.source), infos.size(), infos.size() == 1 ? "" : "s",
                                   to_string(doc.fmt));
-    for (const track_info& t : infos) {
+    for (std::size_t n = 0; n < infos.size(); ++n) {
+        const track_info& t = infos[n];
         out += fmt::format("{}: {} key{}, {} s to {} s, given as {}\n", t.name.empty() ? "track" : "track " + t.name,
                            t.keys, t.keys == 1 ? "" : "s", num(t.start), num(t.end), rep_list(t.given_as));
+        if (const auto& own = doc.tracks[n].interpolation)
+            out += fmt::format("  interpolation: {}\n", interpolation_text(*own, has_translation(doc.tracks[n])));
         for (std::size_t i = 0; i < t.segments.size(); ++i) {
             const segment_info& s = t.segments[i];
             if (i == 0) out += "  segment  angle (deg)  speed (deg/s)\n";
@@ -65,11 +79,20 @@ std::string info_json(const document& doc, const std::vector<track_info>& infos)
         for (const segment_info& s : t.segments)
             segments.push_back(fmt::format("{{\"angle\": {}, \"speed\": {}, \"direct_long_way\": {}}}", num(s.angle_deg),
                                            num(s.speed_deg_s), t.signed_keys ? fmt::format("{}", s.direct_long_way) : "null"));
+        const auto& own = doc.tracks[n].interpolation;
+        // Only where the file states it (glTF).
+        const std::string interpolation =
+            !own ? ""
+            : has_translation(doc.tracks[n])
+                ? fmt::format(", \"interpolation\": {{\"rotation\": \"{}\", \"translation\": \"{}\"}}",
+                              to_string(own->rotation), to_string(own->translation))
+                : fmt::format(", \"interpolation\": {{\"rotation\": \"{}\"}}", to_string(own->rotation));
         out += fmt::format(
             "{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}], \"segments\": [{}], "
-            "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}}}",
+            "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}{}}}",
             n ? "," : "", json_quote(t.name), t.keys, num(t.start), num(t.end), fmt::join(reps, ", "),
-            fmt::join(segments, ", "), t.signed_keys ? list(t.flipped) : "null", list(t.renormalised), list(t.near_gimbal));
+            fmt::join(segments, ", "), t.signed_keys ? list(t.flipped) : "null", list(t.renormalised), list(t.near_gimbal),
+            interpolation);
     }
     out += "]}\n";
     return out;

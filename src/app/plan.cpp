@@ -26,6 +26,7 @@ read_options reading(const options& o, const std::string& source) {
     ro.given.angles = o.radians;
     ro.given.key_fps = o.key_fps.has_value();
     ro.max_bytes = o.max_bytes;
+    ro.animation = o.animation;
     return ro;
 }
 
@@ -45,7 +46,7 @@ write_options writing(const options& o, const std::optional<euler_seq>& input_eu
 resample_options resampling(const options& o) {
     resample_options r;
     r.fps = o.fps;
-    r.how = o.how;
+    r.how = o.how.value_or(method::slerp);
     r.way = o.way;
     r.max_frames = o.max_frames;
     return r;

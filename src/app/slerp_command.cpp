@@ -53,7 +53,8 @@ raw_key operand(const char* name, const std::string& text, const options& o, dou
 }  // namespace
 
 int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
-    if (o.how == method::squad) throw usage_error("--method squad needs more than two keys: use resample");
+    const method how = o.how.value_or(method::slerp);
+    if (how == method::squad) throw usage_error("--method squad needs more than two keys: use resample");
     if (o.steps) {
         if (*o.steps < 1) throw usage_error(fmt::format("--steps: expected at least 1, got {}", *o.steps));
         // A mistyped count must not write for hours.
@@ -66,11 +67,11 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     warnings warn0(err, "Q0"), warn1(err, "Q1");
     const track t{"", o.euler, {make_key(operand("Q0", o.q0, o, 0), settings_of(o), warn0),
                                 make_key(operand("Q1", o.q1, o, 1), settings_of(o), warn1)}};
-    const rotation_curve curve(t, o.how, o.way);
+    const rotation_curve curve(t, how, o.way);
     table_info info;
     info.times = time_columns::time_only;
     info.time_name = "t";
-    info.method = to_string(o.how);
+    info.method = to_string(how);
     // Rows are written as they are made: --steps may ask for millions.
     const std::optional<std::string> target = output_path(o);
     const format to = o.to.value_or(target ? format_of_path(*target).value_or(format::csv) : format::csv);

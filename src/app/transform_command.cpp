@@ -38,6 +38,7 @@ struct document_facts {
         std::optional<euler_seq> euler;
         double key_fps = 24;
         std::size_t keys = 0;
+        std::optional<track_interpolation> interpolation;  // the file's own
     };
     std::vector<track_facts> tracks;
     bool named = false;
@@ -51,7 +52,7 @@ struct document_facts {
         any_time = any_time || k.has_time;
         frames = frames || (k.frame && k.has_time);
         if (tracks.empty() || tracks.back().name != track)
-            tracks.push_back({track, k, k, false, euler, key_fps, 0});
+            tracks.push_back({track, k, k, false, euler, key_fps, 0, std::nullopt});
         any_frame = any_frame || k.frame.has_value();
         ++tracks.back().keys;
         tracks.back().translation = tracks.back().translation || k.translation.has_value();
@@ -66,8 +67,10 @@ struct document_facts {
 document_facts facts_of(const document& doc) {
     document_facts d;
     d.named = doc.named;
-    for (const track& t : doc.tracks)
+    for (const track& t : doc.tracks) {
         for (const key& k : t.keys) d.add(t.name, t.euler, t.key_fps, k);
+        d.tracks.back().interpolation = t.interpolation;
+    }
     return d;
 }
 
@@ -84,8 +87,9 @@ public:
     virtual void check(const document_facts& d, const std::string& source) const = 0;
     /// In one pass: checks key `k` of track `name`, whose first key is `first`, before its rows.
     virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
-    /// A track begins: its rows go to `row`.
-    virtual void begin_track(const std::optional<euler_seq>& euler, bool translation, frame_sink row) = 0;
+    /// A track begins (`own`: the interpolation its file states): its rows go to `row`.
+    virtual void begin_track(const std::optional<euler_seq>& euler, const std::optional<track_interpolation>& own,
+                             bool translation, frame_sink row) = 0;
     virtual void add(const key& k) = 0;
     virtual void end_track() = 0;
 };
@@ -93,19 +97,23 @@ public:
 /// resample: every frame of the grid within a track's keys.
 class frame_rows final : public row_source {
 public:
-    explicit frame_rows(const resample_options& r) : opts_(r) {}
+    /// `method_given`: --method overrides the interpolation a file states.
+    frame_rows(const resample_options& r, bool method_given) : opts_(r), method_given_(method_given) {}
     table_info table(const document_facts& d) const override {
         table_info info;
         info.named = d.named;
         info.translation = d.translation();
         info.fps = opts_.fps;
-        info.method = to_string(opts_.how);
+        // The method, when one interpolates every track's rotation.
+        const method first = of(d.tracks.front().interpolation).how;
+        if (std::all_of(d.tracks.begin(), d.tracks.end(), [&](const auto& t) { return of(t.interpolation).how == first; }))
+            info.method = to_string(first);
         return info;
     }
     /// The frame grid of every track is within bounds.
     void check(const document_facts& d, const std::string& source) const override {
         for (const auto& t : d.tracks) {
-            check_method(opts_.how, t.euler);
+            check_method(of(t.interpolation).how, t.euler);
             check_frame_range(t.first, t.last, t.name, opts_, source);
         }
     }
@@ -113,14 +121,23 @@ public:
     void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const override {
         check_frame_range(first, k, name, opts_, source);
     }
-    void begin_track(const std::optional<euler_seq>& euler, bool translation, frame_sink row) override {
-        resampler_.emplace(opts_, euler, translation, std::move(row));
+    void begin_track(const std::optional<euler_seq>& euler, const std::optional<track_interpolation>& own,
+                     bool translation, frame_sink row) override {
+        resampler_.emplace(of(own), euler, translation, std::move(row));
     }
     void add(const key& k) override { resampler_->add(k); }
     void end_track() override { resampler_->finish(); }
 
 private:
+    /// How a track whose file states `own` is resampled.
+    resample_options of(const std::optional<track_interpolation>& own) const {
+        resample_options r = opts_;
+        if (own && !method_given_) r.how = own->rotation, r.translation_how = own->translation;
+        return r;
+    }
+
     resample_options opts_;
+    bool method_given_;
     std::optional<track_resampler> resampler_;
 };
 
@@ -148,7 +165,10 @@ public:
                                                       d.tracks.front().name, t.name, d.tracks.front().key_fps, t.key_fps));
     }
     void check_key(const key&, const key&, const std::string&, const std::string&) const override {}
-    void begin_track(const std::optional<euler_seq>&, bool, frame_sink row) override { row_ = std::move(row); }
+    void begin_track(const std::optional<euler_seq>&, const std::optional<track_interpolation>&, bool,
+                     frame_sink row) override {
+        row_ = std::move(row);
+    }
     void add(const key& k) override { row_(key_row(k)); }
     void end_track() override {}
 
@@ -238,7 +258,7 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
             if (!seen.tracks.empty()) p.rows->end_track();
             const bool translation = known ? known->tracks[seen.tracks.size()].translation : k.translation.has_value();
             rows.begin_track(name, translation);
-            p.rows->begin_track(settings.euler, translation, row);
+            p.rows->begin_track(settings.euler, std::nullopt, translation, row);
         }
         p.rows->add(k);
         seen.add(name, settings.euler, settings.key_fps, std::move(k));
@@ -256,7 +276,7 @@ void whole_rows(const transform_plan& p, const document& doc, const document_fac
         const track& t = doc.tracks[i];
         const bool translation = d.tracks[i].translation;
         rows.begin_track(t.name, translation);
-        p.rows->begin_track(t.euler, translation, row);
+        p.rows->begin_track(t.euler, t.interpolation, translation, row);
         for (const key& k : t.keys) p.rows->add(k);
         p.rows->end_track();
     }
@@ -297,14 +317,16 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
 /// resample or convert one input into the plan's file or `out`.
 void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
     warnings warn(err, src.source());
-    if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn)) return;
+    const bool streams = !is_gltf(p.in);  // a glTF file's tracks are read whole
+    if (streams && p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn)) return;
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or
     // in a pipe or device named by -o).
     bool read_whole = false;
     document_facts d;
     std::optional<document> whole;
-    if (p.in == format::json) read_whole = !scan_json(p, src, d, warn);
+    if (!streams) read_whole = true;
+    else if (p.in == format::json) read_whole = !scan_json(p, src, d, warn);
     else d = scan(p, src, warn, read_whole);
     if (read_whole) {
         whole = read_document(src, p.in, p.reading, warn, json_reading::whole);
@@ -364,11 +386,14 @@ void check_output_names(const options& o, const std::vector<std::string>& inputs
 /// the formats, where its output goes.
 transform_plan plan_for(const options& o, const std::string& name, const input_source& src) {
     transform_plan p{o, reading(o, src.source()), nullptr, src.detect(o.from), format::csv, std::nullopt};
-    if (o.cmd == command::resample) p.rows = std::make_unique<frame_rows>(resampling(o));
+    if (o.cmd == command::resample) p.rows = std::make_unique<frame_rows>(resampling(o), o.how.has_value());
     else p.rows = std::make_unique<key_rows>();
     p.out = o.to.value_or(p.in);
     if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
     else if ((p.target = output_path(o)) && !o.to) p.out = format_of_path(*p.target).value_or(p.in);
+    if (is_gltf(p.out))
+        throw usage_error(fmt::format("{}: keyrot does not write glTF yet: expected --to csv, json or ndjson",
+                                      p.target ? *p.target : std::string("standard output")));
     return p;
 }
 

@@ -77,6 +77,14 @@ quat segment_curve::at(double h) const noexcept {
         // Shoemake's squad: slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)).
         case method::squad: return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h));
         case method::step: return keys_.q0;
+        case method::cubicspline: {
+            const auto c = [](quat q) { return std::array<double, 4>{q.w, q.x, q.y, q.z}; };
+            const spline_key &a = keys_.spline0_, &b = keys_.spline1_;
+            const auto v = hermite(c(a.rotation), c(a.rotation_out), c(b.rotation), c(b.rotation_in), keys_.t1 - keys_.t0, h);
+            const quat q{v[0], v[1], v[2], v[3]};
+            // The tangents could cancel the values (a curve through zero): its start stands in.
+            return std::isfinite(norm(q)) && norm(q) > 0 ? normalized(q) : keys_.q0;
+        }
         case method::euler: {
             std::array<double, 3> e{};
             for (std::size_t j = 0; j < 3; ++j) e[j] = (1 - h) * keys_.e0_[j] + h * keys_.e1_[j];
@@ -84,6 +92,17 @@ quat segment_curve::at(double h) const noexcept {
         }
     }
     return keys_.q0;
+}
+
+std::array<double, 4> hermite(const std::array<double, 4>& v0, const std::array<double, 4>& b0,
+                              const std::array<double, 4>& v1, const std::array<double, 4>& a1, double seconds,
+                              double s) noexcept {
+    const double s2 = s * s, s3 = s2 * s;
+    const double c0 = 2 * s3 - 3 * s2 + 1, cb = seconds * (s3 - 2 * s2 + s), c1 = -2 * s3 + 3 * s2,
+                 ca = seconds * (s3 - s2);
+    std::array<double, 4> p{};
+    for (std::size_t j = 0; j < 4; ++j) p[j] = c0 * v0[j] + cb * b0[j] + c1 * v1[j] + ca * a1[j];
+    return p;
 }
 
 void check_method(method m, const std::optional<euler_seq>& seq) {
@@ -97,10 +116,13 @@ segment_builder::segment_builder(method m, path p, const std::optional<euler_seq
 
 quat segment_builder::add(const key& k) {
     quat q = k.rotation;
-    if (way_ == path::shortest && !window_.empty() && dot(window_.back().q, q) < 0) q = -q;
+    const bool flips = way_ == path::shortest && how_ != method::cubicspline;
+    if (flips && !window_.empty() && dot(window_.back().q, q) < 0) q = -q;
     std::array<double, 3> e{};
     if (how_ == method::euler) e = k.euler ? *k.euler : to_euler(k.rotation, *seq_).angles;
-    window_.push_back({k.time, q, q, e});  // s = q until both neighbours are known
+    // A key without a spline (--method cubicspline on other input) passes its rotation with no tangents.
+    const spline_key spline = k.spline.value_or(spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}});
+    window_.push_back({k.time, q, q, e, spline});  // s = q until both neighbours are known
     const std::size_t n = window_.size();
     if (how_ == method::squad && n >= 3) window_[n - 2].s = squad_control(window_[n - 3].q, window_[n - 2].q, q);
     return q;
@@ -116,6 +138,7 @@ bool segment_builder::pop(segment& out, bool end) {
     out.t0 = a.time, out.t1 = b.time, out.q0 = a.q, out.q1 = b.q;
     out.s0_ = a.s, out.s1_ = b.s;
     if (how_ == method::euler) out.e0_ = a.e, out.e1_ = b.e, out.seq_ = *seq_;
+    out.spline0_ = a.spline, out.spline1_ = b.spline;
     window_.erase(window_.begin());
     return true;
 }

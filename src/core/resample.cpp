@@ -36,7 +36,8 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
       key_tol_(tol::grid_frames / opts.fps),
       builder_(opts.how, opts.way, seq),
       emit_(std::move(emit)),
-      translations_(translations) {}
+      translations_(translations),
+      translation_how_(opts.translation_how.value_or(opts.how)) {}
 
 void track_resampler::add(const key& k) {
     if (!started_) {
@@ -44,7 +45,8 @@ void track_resampler::add(const key& k) {
         next_frame_ = std::ceil(k.time * opts_.fps - tol::grid_frames);
     }
     if (k.translation) {
-        translation_keys_.emplace_back(k.time, *k.translation);
+        const spline_key spline = k.spline.value_or(spline_key{});
+        translation_keys_.push_back({k.time, *k.translation, spline.translation_in, spline.translation_out});
         resolve_translations(false);
     }
     last_key_ = builder_.add(k);
@@ -97,28 +99,39 @@ void track_resampler::out(double frame, quat q) {
     resolve_translations(false);
 }
 
+vec3 track_resampler::translation_between(const translation_key& a, const translation_key& b, double time) const {
+    const double h = (time - a.time) / (b.time - a.time);
+    switch (translation_how_) {
+        case method::step: return a.value;
+        case method::cubicspline: {
+            const auto c = [](vec3 v) { return std::array<double, 4>{v.x, v.y, v.z, 0}; };
+            const auto p = hermite(c(a.value), c(a.out), c(b.value), c(b.in), b.time - a.time, h);
+            return {p[0], p[1], p[2]};
+        }
+        default: return (1 - h) * a.value + h * b.value;
+    }
+}
+
 void track_resampler::resolve_translations(bool end) {
     // The translation channel: linear between the keys that carry one (held
-    // for step), held before the first and after the last of them. A frame
-    // waits until the first translation key at or after it has arrived.
+    // for step, Hermite for cubicspline), held before the first and after
+    // the last of them. A frame waits until the first translation key at or
+    // after it has arrived.
     auto& keys = translation_keys_;
     while (!pending_.empty()) {
         sample& s = pending_.front();
         std::size_t j = 0;  // the first translation key at or after the frame
-        while (j < keys.size() && keys[j].first < s.time - key_tol_) ++j;
+        while (j < keys.size() && keys[j].time < s.time - key_tol_) ++j;
         if (j == keys.size()) {
             if (!end) return;
-            if (!keys.empty()) s.translation = keys.back().second;
-        } else if (keys[j].first - s.time <= key_tol_ || j == 0) {
+            if (!keys.empty()) s.translation = keys.back().value;
+        } else if (keys[j].time - s.time <= key_tol_ || j == 0) {
             // Of keys within tolerance, the nearer; one not yet here may be nearer still.
-            while (j + 1 < keys.size() && std::fabs(keys[j + 1].first - s.time) < std::fabs(keys[j].first - s.time)) ++j;
-            if (!end && j + 1 == keys.size() && keys[j].first != s.time && keys[j].first - s.time <= key_tol_) return;
-            s.translation = keys[j].second;
-        } else if (opts_.how == method::step) {
-            s.translation = keys[j - 1].second;
+            while (j + 1 < keys.size() && std::fabs(keys[j + 1].time - s.time) < std::fabs(keys[j].time - s.time)) ++j;
+            if (!end && j + 1 == keys.size() && keys[j].time != s.time && keys[j].time - s.time <= key_tol_) return;
+            s.translation = keys[j].value;
         } else {
-            const double h = (s.time - keys[j - 1].first) / (keys[j].first - keys[j - 1].first);
-            s.translation = (1 - h) * keys[j - 1].second + h * keys[j].second;
+            s.translation = translation_between(keys[j - 1], keys[j], s.time);
         }
         emit_(s);
         pending_.pop_front();

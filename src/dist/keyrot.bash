@@ -18,7 +18,7 @@ _keyrot() {
         esac
     done
 
-    local input="--from --strict --key-fps --max-bytes"
+    local input="--from --strict --key-fps --max-bytes --animation"
     local conventions="--euler --quat-order --radians"
     local output="-o --output --to --rep --out-euler --out-degrees --out-radians --precision $conventions"
     local interpolation="--method --path"
@@ -37,8 +37,8 @@ _keyrot() {
     local euler="XYZ XZY YXZ YZX ZXY ZYX XYX XZX YXY YZY ZXZ ZYZ xyz xzy yxz yzx zxy zyx xyx xzx yxy yzy zxz zyz"
     local values
     case $prev in
-        --from) values="csv json ndjson" ;;
-        --to) [[ $command == info ]] && values="json" || values="csv json ndjson" ;;
+        --from) values="csv json ndjson gltf glb" ;;
+        --to) [[ $command == info ]] && values="json" || values="csv json ndjson gltf glb" ;;
         --rep) values="axis-angle quat rotvec euler matrix matrix4" ;;
         --from-rep) values="quat axis-angle rotvec euler" ;;
         --method) values="slerp nlerp squad step euler" ;;
@@ -52,8 +52,9 @@ _keyrot() {
         --output-dir)
             COMPREPLY=($(compgen -d -- "$cur"))
             return ;;
-        -t | --steps | --fps | --key-fps | --max-frames | --max-bytes | --jobs | --precision | --tol | --tol-translation)
-            COMPREPLY=()  # a number
+        -t | --steps | --fps | --key-fps | --max-frames | --max-bytes | --jobs | --precision | --tol | --tol-translation | \
+            --animation)
+            COMPREPLY=()  # a number, or an animation's name
             return ;;
     esac
     if [[ -n ${values-} && $prev == -* ]]; then

@@ -8,18 +8,27 @@
 
 namespace keyrot {
 
-enum class format { csv, json, ndjson };
+/// Key tables (csv, json, ndjson) and animation files: glTF 2.0 as JSON
+/// with its buffers (gltf) or binary (glb).
+enum class format { csv, json, ndjson, gltf, glb };
 template <>
-inline constexpr std::array<enum_name<format>, 3> names_of<format> = {
-    {{format::csv, "csv"}, {format::json, "json"}, {format::ndjson, "ndjson"}}};
+inline constexpr std::array<enum_name<format>, 5> names_of<format> = {{{format::csv, "csv"},
+                                                                      {format::json, "json"},
+                                                                      {format::ndjson, "ndjson"},
+                                                                      {format::gltf, "gltf"},
+                                                                      {format::glb, "glb"}}};
+/// glTF 2.0, JSON or binary.
+constexpr bool is_gltf(format f) noexcept { return f == format::gltf || f == format::glb; }
 /// Most bytes a CSV or NDJSON line, or a JSON document read whole, may take
 /// (--max-bytes): endless input (/dev/zero) ends in an error, not in all memory.
 inline constexpr std::size_t default_max_bytes = std::size_t{256} << 20;
 
-/// ".csv" -> csv, ".json" -> json, ".ndjson" / ".jsonl" -> ndjson.
+/// ".csv" -> csv, ".json" -> json, ".ndjson" / ".jsonl" -> ndjson, ".gltf", ".glb".
 std::optional<format> format_of_path(std::string_view path);
-/// Guess from the start of the content: '{' or '[' first means JSON, unless
-/// the first line is a whole object and more lines follow (NDJSON); else CSV.
+/// Guess from the start of the content: the GLB magic "glTF" means glb; an
+/// object with an "asset" object and a "version" means gltf; '{' or '['
+/// first means JSON, unless the first line is a whole object and more lines
+/// follow (NDJSON); else CSV.
 format sniff_format(std::string_view start);
 
 }  // namespace keyrot

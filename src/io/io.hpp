@@ -29,6 +29,8 @@ struct read_options {
     /// Most bytes a CSV or NDJSON line, or a JSON document read whole, may
     /// take: endless input (/dev/zero) ends in an error, not in all memory.
     std::size_t max_bytes = default_max_bytes;
+    /// glTF: the one animation to read, by name or index (--animation).
+    std::optional<std::string> animation;
 };
 
 /// Takes a JSON document's keys as they are read, track after track, so

@@ -125,7 +125,9 @@ std::string place_of(std::string_view text, std::size_t byte, std::string_view s
     return fmt::format("{}:{}:{}", source, first_line + line_of(text, byte) - 1, byte - line_start + 1);
 }
 
-json parse_dom(std::string_view text, std::string_view source, std::size_t first_line) {
+}  // namespace
+
+json parse_json_text(std::string_view text, std::string_view source, std::size_t first_line) {
     check_depth(text, source, first_line);
     try {
         return json::parse(text.begin(), text.end(), unique_names(source));
@@ -145,6 +147,8 @@ json parse_dom(std::string_view text, std::string_view source, std::size_t first
                           fmt::format("number '{}' is out of range: expected a finite number", token.substr(0, 40)));
     }
 }
+
+namespace {
 
 using detail::apply_fields;
 using detail::key_object_reader;
@@ -217,7 +221,7 @@ bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, w
             // now, from the first block, rather than after reading all there is.
             const std::string_view start = without_bom(std::string_view(chunk.data(), static_cast<std::size_t>(got)));
             const auto first = start.find_first_not_of(" \t\r\n");
-            if (first != std::string_view::npos && start[first] != '{' && start[first] != '[') parse_dom(start, opts.source, 1);
+            if (first != std::string_view::npos && start[first] != '{' && start[first] != '[') parse_json_text(start, opts.source, 1);
         }
         if (text.size() + static_cast<std::size_t>(got) > opts.max_bytes)
             throw input_error(opts.source, fmt::format("JSON document longer than {} bytes (--max-bytes N raises the limit)",
@@ -226,7 +230,7 @@ bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, w
     }
     flat_json flat;
     if (flat.parse(text)) return read_json_value(flat.root(), opts, sink, warn);
-    return read_json_value(dom_value(parse_dom(text, opts.source, 1)), opts, sink, warn);
+    return read_json_value(dom_value(parse_json_text(text, opts.source, 1)), opts, sink, warn);
 }
 
 namespace {
@@ -259,7 +263,7 @@ public:
         // The same header again is two of keyrot's outputs one after the other (cat a.ndjson b.ndjson).
         if (trim(line).empty() || (!header_.empty() && trim(line) == header_)) return false;
         if (fast_.parse(line)) read(fast_.root(), line_no, track, k);
-        else read(dom_value(parse_dom(line, source_, line_no)), line_no, track, k);
+        else read(dom_value(parse_json_text(line, source_, line_no)), line_no, track, k);
         return true;
     }
 
@@ -314,7 +318,7 @@ public:
         const std::string where = fmt::format("{}:{}", opts.source, lines_.number());
         quat_order order = opts.order;
         if (parsed) apply_fields(fast.root(), settings_, order, where, settings_object::header, opts, warn);
-        else apply_fields(dom_value(parse_dom(line, opts.source, lines_.number())), settings_, order, where,
+        else apply_fields(dom_value(parse_json_text(line, opts.source, lines_.number())), settings_, order, where,
                           settings_object::header, opts, warn);
         keys_ = ndjson_lines(opts.source, order, std::string(trim(line)));
     }

@@ -1,15 +1,24 @@
 #pragma once
 // JSON documents ({"keys": [...]}, {"frames": [...]}, {"tracks": {...}} or a
 // bare array of keys) and NDJSON (one key or frame object per line).
+#include <nlohmann/json_fwd.hpp>
+
 #include <istream>
 #include <memory>
 #include <string>
+#include <string_view>
 
 #include "io/io.hpp"
 #include "io/line_keys.hpp"
 #include "io/table_writer.hpp"
 
 namespace keyrot {
+
+/// A JSON text parsed whole, its members in their order. Nesting deeper
+/// than 64 levels, and a name twice in one object, are refused. Throws
+/// input_error "<source>:<line>:<column>: invalid JSON: ..." (lines counted
+/// from `first_line`).
+nlohmann::ordered_json parse_json_text(std::string_view text, std::string_view source, std::size_t first_line = 1);
 
 /// The whole document at once (memory about four times its size), its
 /// tracks and keys handed to `sink` in its order; returns whether it names

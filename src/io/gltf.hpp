@@ -1,0 +1,23 @@
+#pragma once
+// glTF 2.0 animations as tracks: one track per animated node (and
+// animation), its rotation and translation channels merged on one list of
+// key times, interpolated as their samplers say.
+#include <istream>
+#include <string>
+
+#include "io/document.hpp"
+#include "io/io.hpp"
+
+namespace keyrot {
+
+/// The animations of a glTF file (`f`: gltf or glb; relative buffer URIs
+/// from the directory of ro.source), or the one ro.animation names. A track is named after
+/// its node ("node<i>" when unnamed), prefixed "<animation>/" when several
+/// animations are read. Where a node's rotation and translation are keyed
+/// at different times, each channel gets a key at the other's times too,
+/// its value on its own curve there (so the curve is the same). Throws
+/// input_error naming the JSON path: "walk.glb: animations[0].samplers[2]
+/// .output: accessor 14 ...".
+document read_gltf(std::istream& in, format f, const read_options& ro, warnings& warn);
+
+}  // namespace keyrot

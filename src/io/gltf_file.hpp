@@ -1,0 +1,57 @@
+#pragma once
+// A glTF 2.0 file as it is stored: its JSON (from a .gltf, or a .glb's JSON
+// chunk), its buffers (the .glb's BIN chunk, base64 data: URIs, files
+// beside it), and its accessors decoded as the specification says.
+#include <nlohmann/json.hpp>
+
+#include <istream>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/format.hpp"
+
+namespace keyrot {
+
+using gltf_json = nlohmann::ordered_json;
+
+struct gltf_file {
+    std::string source;     ///< for messages
+    std::string directory;  ///< where relative buffer URIs point: the file's, "." for standard input
+    std::size_t max_bytes = default_max_bytes;  ///< the most a buffer file may hold
+    gltf_json json;
+    std::optional<std::string> bin;                  ///< a .glb's BIN chunk
+    std::vector<std::optional<std::string>> buffers;  ///< each as it is first read
+};
+
+/// The file's JSON, and a .glb's BIN chunk (`f`: gltf or glb). Checks the
+/// container, asset.version 2 and extensionsRequired; buffers are read when
+/// an accessor needs them. Throws input_error: "walk.glb: truncated GLB: the
+/// header says 5000 bytes, the file has 4000".
+gltf_file load_gltf(std::istream& in, format f, const std::string& source, const std::string& directory,
+                    std::size_t max_bytes);
+
+/// What a reader takes from an accessor: its type ("SCALAR", "VEC3",
+/// "VEC4") and whether normalised BYTE, UNSIGNED_BYTE, SHORT and
+/// UNSIGNED_SHORT components are read (as well as FLOAT).
+struct accessor_kind {
+    std::string_view type;
+    bool normalized_integers = false;
+};
+
+/// The elements of accessor `index` (a JSON value, for its checks), their
+/// components one after another, decoded as the specification says
+/// (byteStride, normalised integers, sparse substitution). `path` names what
+/// refers to it, for messages: "walk.glb: animations[0].samplers[2].output:
+/// accessor 14 reads past the end of buffer 0".
+std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const std::string& path,
+                                  const accessor_kind& kind);
+
+/// The array `name` of the file's JSON ("nodes"), empty when there is none.
+const gltf_json& top_array(const gltf_file& file, const char* name);
+
+/// `value` as an index into `array` (of `what`: "node"), or an input_error at `path`.
+std::size_t index_into(const gltf_file& file, const gltf_json& value, const char* array, const std::string& path);
+
+}  // namespace keyrot

@@ -1,0 +1,433 @@
+#!/usr/bin/env python3
+"""glTF input against an independent reading of the glTF 2.0 specification.
+
+Generated files (skinned skeletons of 20 to 60 joints; LINEAR, STEP and
+CUBICSPLINE samplers; float and normalised-integer rotations; interleaved
+bufferViews; sparse accessors; a first key after 0 s; keys 180 degrees
+apart; w < 0; rotation and translation keyed at different times; several
+animations) as .glb, .gltf with a .bin, .gltf with a data: URI, and .glb on
+standard input. keyrot's resampled frames are compared with the sampler
+semantics written out here: scipy's Slerp for LINEAR rotations, the Hermite
+formula in numpy for CUBICSPLINE, the held value for STEP. Then the bad
+files: each one line naming the file and the JSON path, exit 2, no output.
+
+Usage: gltf_test.py KEYROT
+Exit 0 when all pass, 1 otherwise; 77 (skip) without scipy.
+"""
+import bisect
+import csv
+import io
+import json
+import math
+import os
+import struct
+import subprocess
+import sys
+import tempfile
+
+try:
+    import numpy as np
+    from scipy.spatial.transform import Rotation, Slerp
+except ImportError:  # pragma: no cover
+    print("gltf_test: numpy/scipy not installed (apt-get install python3-scipy); skipped")
+    sys.exit(77)
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import gltf_files as G  # noqa: E402
+
+KEYROT = os.path.abspath(sys.argv[1])
+ROT_TOL_DEG = 1e-9
+POS_TOL = 1e-9
+failures = []
+checks = 0
+
+
+def fail(msg):
+    failures.append(msg)
+    print("FAIL:", msg)
+
+
+def run(args, stdin=None):
+    p = subprocess.run([KEYROT] + args, input=stdin, capture_output=True)
+    return p.returncode, p.stdout.decode(), p.stderr.decode()
+
+
+# ---------------------------------------------------------------- reference
+def curve_value(times, values, interp, t, rotation):
+    """A sampler's value at t as the glTF 2.0 specification defines it.
+    values: keys x width, or keys x 3 x width (in, value, out) for CUBICSPLINE;
+    rotations in x, y, z, w."""
+    cubic = interp == "CUBICSPLINE"
+    v = (lambda i: values[i][1]) if cubic else (lambda i: values[i])
+    if t <= times[0]:
+        out = v(0)
+    elif t >= times[-1]:
+        out = v(len(times) - 1)
+    else:
+        i = bisect.bisect_right(times, t) - 1
+        td = times[i + 1] - times[i]
+        h = (t - times[i]) / td
+        if times[i] == t or interp == "STEP":
+            out = v(i)
+        elif cubic:
+            out = ((2 * h**3 - 3 * h**2 + 1) * values[i][1] + td * (h**3 - 2 * h**2 + h) * values[i][2]
+                   + (-2 * h**3 + 3 * h**2) * values[i + 1][1] + td * (h**3 - h**2) * values[i + 1][0])
+        elif rotation and np.dot(v(i), v(i + 1)) == 0:
+            # Exactly half a turn apart, the specification's slerp divides 0 by 0; keyrot turns
+            # towards the second key as stored (sin(a(1 - h)) v0 + sin(a h) v1 with a = 90 degrees).
+            out = math.cos(h * math.pi / 2) * v(i) + math.sin(h * math.pi / 2) * v(i + 1)
+        elif rotation:
+            out = Slerp([0, 1], Rotation.from_quat([v(i), v(i + 1)]))([h]).as_quat()[0]
+        else:
+            out = (1 - h) * v(i) + h * v(i + 1)
+    out = np.asarray(out, dtype=float)
+    return out / np.linalg.norm(out) if rotation else out
+
+
+def angle_deg(q_xyzw, ref_xyzw):
+    a = np.asarray(q_xyzw) / np.linalg.norm(q_xyzw)
+    b = np.asarray(ref_xyzw) / np.linalg.norm(ref_xyzw)
+    if np.dot(a, b) < 0:
+        b = -b
+    return math.degrees(4 * math.asin(min(1.0, np.linalg.norm(a - b) / 2)))
+
+
+def read_csv(text):
+    return list(csv.DictReader(line for line in io.StringIO(text) if not line.startswith("#")))
+
+
+class Case:
+    """A generated file and what the reference says its tracks are."""
+
+    def __init__(self, name):
+        self.name = name
+        self.b = G.Builder()
+        self.tracks = {}  # track name -> {"rotation": (times, values, interp), "translation": ..., "rest": xyzw}
+
+    def channel(self, track, node, path, times, values, interp="LINEAR", component=G.FLOAT, stride=None):
+        """Adds a channel; the reference keeps the values as a reader decodes them."""
+        self.pending.append({"node": node, "path": path, "times": times, "values": values,
+                             "interpolation": interp, "component": component, "stride": stride})
+        decoded_times = self.b.decoded(times)
+        decoded = self.b.decoded(np.asarray(values, dtype=float), component)
+        self.tracks.setdefault(track, {})[path] = (list(decoded_times), decoded, interp)
+
+    def begin(self):
+        self.pending = []
+
+    def end(self, name=None):
+        self.b.animation(self.pending, name)
+
+
+def random_quats(rng, n, spread=1.0):
+    """A random walk of unit quaternions (x, y, z, w), signs as they fall (w < 0 included)."""
+    r = Rotation.random(random_state=rng)
+    out = []
+    for _ in range(n):
+        r = Rotation.from_rotvec(rng.normal(size=3) * spread) * r
+        q = r.as_quat()
+        out.append(q if rng.random() < 0.7 else -q)
+    return np.array(out)
+
+
+def key_times(rng, n, start=0.0):
+    return np.cumsum(np.concatenate([[start], rng.uniform(0.02, 0.3, n - 1)]))
+
+
+def cubic_values(rng, quats):
+    """keys x 3 x width: in-tangent, value, out-tangent."""
+    n, w = quats.shape
+    return np.stack([rng.normal(size=(n, w)) * 0.5, quats, rng.normal(size=(n, w)) * 0.5], axis=1)
+
+
+# ---------------------------------------------------------------- cases
+def make_cases(work):
+    rng = np.random.default_rng(20261202)
+    cases = []
+
+    # A skinned character: LINEAR rotations on 30 joints, root translation on the same times.
+    c = Case("walk.glb")
+    c.b.skeleton(30)
+    c.begin()
+    t = key_times(rng, 40, 0.0)
+    for j in range(30):
+        c.channel(f"joint{j}", j, "rotation", t, random_quats(rng, 40, 0.3))
+    c.channel("joint0", 0, "translation", t, rng.normal(size=(40, 3)))
+    c.end()
+    cases.append((c, "glb"))
+
+    # STEP rotations, a first key after 0 s, in a .gltf with its .bin.
+    c = Case("step.gltf")
+    c.b.skeleton(20)
+    c.begin()
+    for j in range(20):
+        c.channel(f"joint{j}", j, "rotation", key_times(rng, 12, 0.37), random_quats(rng, 12, 1.0), "STEP")
+    c.end()
+    cases.append((c, "bin"))
+
+    # CUBICSPLINE rotations and translations, embedded as a data: URI.
+    c = Case("cubic.gltf")
+    c.b.skeleton(24)
+    c.begin()
+    for j in range(24):
+        t = key_times(rng, 10, 0.1 * (j % 3))
+        c.channel(f"joint{j}", j, "rotation", t, cubic_values(rng, random_quats(rng, 10, 0.6)), "CUBICSPLINE")
+        if j % 4 == 0:
+            c.channel(f"joint{j}", j, "translation", t, cubic_values(rng, rng.normal(size=(10, 3))), "CUBICSPLINE")
+    c.end()
+    cases.append((c, "datauri"))
+
+    # Normalised SHORT and BYTE rotations, interleaved (byteStride) outputs, keys 180 degrees apart.
+    c = Case("quantised.glb")
+    c.b.skeleton(20)
+    c.begin()
+    for j in range(20):
+        q = random_quats(rng, 16, 0.8)
+        if j < 2:  # each key half a turn (j = 0), or 179.5 degrees, from the one before, about z
+            half = math.radians(90 if j == 0 else 89.75)
+            q = np.array([[0, 0, math.sin(k * half), math.cos(k * half)] for k in range(16)])
+        component = [G.SHORT, G.BYTE, G.FLOAT][j % 3]
+        c.channel(f"joint{j}", j, "rotation", key_times(rng, 16), q, component=component, stride=[None, 12, 20][j % 3])
+    c.end()
+    cases.append((c, "glb"))
+
+    # Rotation and translation keyed at different times (LINEAR and CUBICSPLINE), a
+    # translation-only node with a rest rotation, unnamed nodes.
+    c = Case("offset.glb")
+    c.b.skeleton(20, names=False)
+    c.b.json["nodes"][5]["rotation"] = [0.0, 0.6, 0.0, 0.8]
+    c.begin()
+    c.channel("node0", 0, "rotation", key_times(rng, 8, 0.2), random_quats(rng, 8, 0.7))
+    c.channel("node0", 0, "translation", key_times(rng, 11, 0.0), rng.normal(size=(11, 3)))
+    t1, t2 = key_times(rng, 9, 0.0), key_times(rng, 7, 0.3)
+    c.channel("node1", 1, "rotation", t1, cubic_values(rng, random_quats(rng, 9, 0.7)), "CUBICSPLINE")
+    c.channel("node1", 1, "translation", t2, cubic_values(rng, rng.normal(size=(7, 3))), "CUBICSPLINE")
+    c.channel("node2", 2, "rotation", key_times(rng, 9, 0.5), random_quats(rng, 9, 0.7), "STEP")
+    c.channel("node2", 2, "translation", key_times(rng, 6, 0.0), rng.normal(size=(6, 3)))
+    c.channel("node5", 5, "translation", key_times(rng, 6, 0.0), rng.normal(size=(6, 3)))
+    c.tracks["node5"]["rest"] = [0.0, 0.6, 0.0, 0.8]
+    c.end()
+    cases.append((c, "glb"))
+
+    # Two animations on a 60-joint skeleton: tracks "Walk/joint3", "Run/joint3".
+    c = Case("two.glb")
+    c.b.skeleton(60)
+    for anim in ["Walk", "Run"]:
+        c.begin()
+        for j in range(0, 60, 3):
+            c.channel(f"{anim}/joint{j}", j, "rotation", key_times(rng, 20), random_quats(rng, 20, 0.4))
+        c.end(anim)
+    cases.append((c, "glb"))
+
+    for case, how in cases:
+        case.path = os.path.join(work, case.name)
+        case.b.write(case.path, how)
+    return [case for case, _ in cases]
+
+
+def expected_frames(track, fps):
+    """(frame, rotation xyzw, translation or None) on keyrot's grid for the track's key range."""
+    times = [x for ch in ("rotation", "translation") if ch in track for x in track[ch][0]]
+    first, last = min(times), max(times)
+    frames = []
+    for k in range(math.ceil(first * fps - 1e-9), math.floor(last * fps + 1e-9) + 1):
+        t = k / fps
+        if "rotation" in track:
+            ts, vs, interp = track["rotation"]
+            q = curve_value(ts, vs, interp, t, True)
+        else:
+            q = np.array(track["rest"]) / np.linalg.norm(track["rest"])
+        p = None
+        if "translation" in track:
+            ts, vs, interp = track["translation"]
+            p = curve_value(ts, vs, interp, t, False)
+        frames.append((k, q, p))
+    return frames
+
+
+def check_resample(case, fps, extra=(), stdin=None, animation=None):
+    """`animation`: the name of the one animation `extra` picks."""
+    global checks
+    args = ["resample", "-" if stdin else case.path, "--to", "csv", "--rep", "quat", "--fps", str(fps)] + list(extra)
+    status, out, err = run(args, stdin)
+    label = f"{case.name} at {fps} fps {' '.join(extra)}{' (stdin)' if stdin else ''}"
+    if status != 0:
+        fail(f"{label}: status {status}: {err.strip()}")
+        return
+    rows = read_csv(out)
+    by_track = {}
+    for r in rows:
+        by_track.setdefault(r["track"], []).append(r)
+    wanted = case.tracks if animation is None else {
+        name.split("/", 1)[1]: t for name, t in case.tracks.items() if name.startswith(animation + "/")}
+    if list(by_track) != list(wanted):
+        fail(f"{label}: tracks {list(by_track)[:5]}..., expected {list(wanted)[:5]}...")
+        return
+    worst_rot, worst_pos = 0.0, 0.0
+    for name, track in wanted.items():
+        expected = expected_frames(track, fps)
+        got = by_track[name]
+        if [int(r["frame"]) for r in got] != [k for k, _, _ in expected]:
+            fail(f"{label}: track {name}: frames {got[0]['frame']}..{got[-1]['frame']}, expected "
+                 f"{expected[0][0]}..{expected[-1][0]}")
+            continue
+        for r, (k, q, p) in zip(got, expected):
+            mine = [float(r["qx"]), float(r["qy"]), float(r["qz"]), float(r["qw"])]
+            worst_rot = max(worst_rot, angle_deg(mine, q))
+            if p is not None:
+                if r["tx"] == "":
+                    fail(f"{label}: track {name} frame {k}: no translation")
+                    break
+                worst_pos = max(worst_pos, float(np.max(np.abs(np.array([float(r["tx"]), float(r["ty"]), float(r["tz"])]) - p))))
+    checks += 1
+    if worst_rot > ROT_TOL_DEG or worst_pos > POS_TOL:
+        fail(f"{label}: largest difference {worst_rot:.3g} deg, {worst_pos:.3g} in translation")
+    else:
+        print(f"ok: {label}: {len(rows)} frames, within {worst_rot:.2g} deg and {worst_pos:.2g}")
+
+
+def check_convert(case):
+    """convert writes each channel's keys as stored (normalised rotations)."""
+    global checks
+    status, out, err = run(["convert", case.path, "--to", "csv", "--rep", "quat"])
+    if status != 0:
+        fail(f"convert {case.name}: status {status}: {err.strip()}")
+        return
+    rows = read_csv(out)
+    for name, track in case.tracks.items():
+        if "rotation" not in track:
+            continue
+        ts, vs, interp = track["rotation"]
+        mine = [r for r in rows if r["track"] == name]
+        for t, v in zip(ts, vs):
+            v = v[1] if interp == "CUBICSPLINE" else v
+            row = next((r for r in mine if float(r["time"]) == t), None)
+            if row is None:
+                fail(f"convert {case.name}: track {name}: no key at {t}")
+                return
+            q = np.array([float(row["qx"]), float(row["qy"]), float(row["qz"]), float(row["qw"])])
+            if np.max(np.abs(q - v / np.linalg.norm(v))) > 1e-15:
+                fail(f"convert {case.name}: track {name} at {t}: {q}, expected {v / np.linalg.norm(v)}")
+                return
+    checks += 1
+    print(f"ok: convert {case.name}: keys as stored")
+
+
+# ---------------------------------------------------------------- bad files
+def bad_cases(work):
+    """(name, bytes or a function writing files, expected piece of the message)."""
+    b = G.Builder()
+    b.skeleton(3)
+    b.animation([{"node": 1, "path": "rotation", "times": [0.0, 0.5, 1.0],
+                  "values": random_quats(np.random.default_rng(1), 3)}])
+    base = os.path.join(work, "base.glb")
+    b.write(base, "glb")
+    good = open(base, "rb").read()
+    text_len = struct.unpack_from("<I", good, 12)[0]
+    doc = json.loads(good[20:20 + text_len])
+    binary = good[20 + text_len + 8:]
+
+    def with_json(change):
+        d = json.loads(json.dumps(doc))
+        change(d)
+        return G.glb(json.dumps(d).encode(), binary)
+
+    def times_bytes(values):
+        d = json.loads(json.dumps(doc))
+        view = d["bufferViews"][d["accessors"][d["animations"][0]["samplers"][0]["input"]]["bufferView"]]
+        data = bytearray(binary)
+        struct.pack_into("<3f", data, view["byteOffset"], *values)
+        return G.glb(json.dumps(d).encode(), bytes(data))
+
+    def set_(path, value):
+        def change(d):
+            target = d
+            for p in path[:-1]:
+                target = target[p]
+            target[path[-1]] = value
+        return change
+
+    sampler = ["animations", 0, "samplers", 0]
+    out_acc = doc["animations"][0]["samplers"][0]["output"]
+    cases = [
+        ("magic.glb", b"glTx" + good[4:], "not a GLB file"),
+        ("version.glb", good[:4] + struct.pack("<I", 1) + good[8:], "GLB version 1: expected 2"),
+        ("truncated.glb", good[:-16], "truncated GLB: the header says"),
+        ("header.glb", good[:9], "truncated GLB: 9 bytes"),
+        ("chunk.glb", good[:12] + struct.pack("<I", 99999) + good[16:], "runs past the end"),
+        ("json.glb", G.glb(b'{"asset": {"version": "2.0"}, "animations": [', binary), "invalid JSON"),
+        ("asset.glb", with_json(set_(["asset", "version"], "1.0")), "asset.version: glTF 1.0"),
+        ("draco.glb", with_json(set_(["extensionsRequired"], ["KHR_draco_mesh_compression"])),
+         "extensionsRequired[0]: \"KHR_draco_mesh_compression\""),
+        ("meshopt.glb", with_json(set_(["extensionsRequired"], ["EXT_meshopt_compression"])), "EXT_meshopt_compression"),
+        ("accessor.glb", with_json(set_(["accessors", out_acc, "count"], 1000)),
+         f"animations[0].samplers[0].output: accessor {out_acc}: 1000 elements from byte 0 read past the end of bufferView"),
+        ("view.glb", with_json(set_(["bufferViews", doc["accessors"][out_acc]["bufferView"], "byteLength"], 10**6)),
+         f"bufferViews[{doc['accessors'][out_acc]['bufferView']}]: bytes "),
+        ("times.glb", times_bytes([0.0, 0.5, 0.5]), "samplers[0].input: time 0.5 s at key 2 is not after"),
+        ("nan.glb", times_bytes([0.0, float("nan"), 1.0]), "element 1 is not finite"),
+        ("vec3.glb", with_json(set_(["accessors", out_acc, "type"], "VEC3")), "type 'VEC3': expected VEC4"),
+        ("cubic.glb", with_json(set_(sampler + ["interpolation"], "CUBICSPLINE")),
+         "3 elements for 3 key times: expected 9 (CUBICSPLINE"),
+        ("interp.glb", with_json(set_(sampler + ["interpolation"], "BEZIER")), "interpolation 'BEZIER'"),
+        ("node.glb", with_json(set_(["animations", 0, "channels", 0, "target", "node"], 99)),
+         "animations[0].channels[0].target.node: 99: expected an index into nodes"),
+        ("sampler.glb", with_json(set_(["animations", 0, "channels", 0, "sampler"], 5)), "channels[0].sampler: 5"),
+        ("uint.glb", with_json(set_(["accessors", out_acc, "componentType"], G.UNSIGNED_INT)), "componentType 5125"),
+        ("noanim.glb", with_json(lambda d: d.pop("animations")), "no animations"),
+        ("nobin.glb", G.glb(json.dumps(doc).encode(), b""), "buffers[0]: no uri, and the file has no GLB BIN chunk"),
+    ]
+    # .gltf files whose buffers are bad: missing, short, bad base64.
+    gltf_doc = json.loads(json.dumps(doc))
+    gltf_doc["buffers"][0]["uri"] = "missing.bin"
+    cases.append(("missing.gltf", json.dumps(gltf_doc).encode(), "cannot read"))
+    with open(os.path.join(work, "short.bin"), "wb") as f:
+        f.write(binary[:20])
+    gltf_doc["buffers"][0]["uri"] = "short.bin"
+    cases.append(("short.gltf", json.dumps(gltf_doc).encode(), f"buffers[0]: holds 20 bytes: expected byteLength {len(binary)}"))
+    gltf_doc["buffers"][0]["uri"] = "data:application/octet-stream;base64,AAAA*AAA"
+    cases.append(("base64.gltf", json.dumps(gltf_doc).encode(), "buffers[0]: uri: expected a base64 data: URI"))
+    gltf_doc["buffers"][0]["uri"] = "https://example.com/a.bin"
+    cases.append(("remote.gltf", json.dumps(gltf_doc).encode(), "expected a file beside the glTF file"))
+    return cases
+
+
+def check_bad(work):
+    global checks
+    for name, data, expected in bad_cases(work):
+        path = os.path.join(work, name)
+        with open(path, "wb") as f:
+            f.write(data)
+        target = os.path.join(work, "out.csv")
+        status, out, err = run(["resample", path, "-o", target])
+        lines = err.strip().split("\n")
+        if status != 2 or len(lines) != 1 or expected not in err or not err.startswith(f"keyrot: {path}") or os.path.exists(target):
+            fail(f"bad {name}: status {status}, stderr {err.strip()!r}, expected one line with {expected!r}")
+            if os.path.exists(target):
+                os.remove(target)
+        else:
+            checks += 1
+            print(f"ok: bad {name}: {err.strip()}")
+
+
+def main():
+    with tempfile.TemporaryDirectory() as work:
+        cases = make_cases(work)
+        for case in cases:
+            for fps in (24, 30, 60):
+                check_resample(case, fps)
+            check_convert(case)
+        two = cases[-1]
+        check_resample(two, 24, ["--animation", "Run"], animation="Run")
+        check_resample(two, 24, ["--animation", "0"], animation="Walk")
+        with open(cases[0].path, "rb") as f:
+            check_resample(cases[0], 30, stdin=f.read())
+        with open(cases[2].path, "rb") as f:  # a .gltf on standard input, its buffer a data: URI
+            check_resample(cases[2], 30, stdin=f.read())
+        check_bad(work)
+    print(f"gltf_test: {checks} checks, {len(failures)} failures")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
