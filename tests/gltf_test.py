@@ -8,11 +8,19 @@ apart; w < 0; rotation and translation keyed at different times; several
 animations) as .glb, .gltf with a .bin, .gltf with a data: URI, and .glb on
 standard input. keyrot's resampled frames are compared with the sampler
 semantics written out here: scipy's Slerp for LINEAR rotations, the Hermite
-formula in numpy for CUBICSPLINE, the held value for STEP. Then the bad
-files: each one line naming the file and the JSON path, exit 2, no output.
+formula in numpy for CUBICSPLINE, the held value for STEP. Then glTF output:
+each file resampled into .glb and .gltf (and keyrot's other inputs into new
+files) passes the Khronos glTF Validator, reads back as the frames keyrot
+writes in CSV (to float32 accuracy), keeps everything else of the input
+(nodes, meshes, skins, their bytes, a morph-weights channel), holds no
+bytes of the old animation, and resampled again at its own rate gives the
+same frames. Then the bad files: each one line naming the file and
+the JSON path, exit 2, no output.
 
-Usage: gltf_test.py KEYROT
-Exit 0 when all pass, 1 otherwise; 77 (skip) without scipy.
+Usage: gltf_test.py KEYROT [VALIDATOR_JS]
+VALIDATOR_JS: tests/gltf_validate.js, where the validator is installed
+(.ci/deps test installs it; without it outputs are not validated, and the
+test says so). Exit 0 when all pass, 1 otherwise; 77 (skip) without scipy.
 """
 import bisect
 import csv
@@ -36,6 +44,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gltf_files as G  # noqa: E402
 
 KEYROT = os.path.abspath(sys.argv[1])
+VALIDATOR = sys.argv[2] if len(sys.argv) > 2 else None
+FLOAT32_DEG = 2e-5  # a quaternion's components rounded to 32-bit floats
 ROT_TOL_DEG = 1e-9
 POS_TOL = 1e-9
 failures = []
@@ -53,6 +63,12 @@ def run(args, stdin=None):
 
 
 # ---------------------------------------------------------------- reference
+def near_key(time, fps):
+    """How near, in frames, a frame counts as at a key at `time`: 1e-9 frame, or the key's
+    32-bit rounding (2^-24 of it), as the README says."""
+    return max(1e-9, abs(time) * fps * 2.0**-24)
+
+
 def curve_value(times, values, interp, t, rotation):
     """A sampler's value at t as the glTF 2.0 specification defines it.
     values: keys x width, or keys x 3 x width (in, value, out) for CUBICSPLINE;
@@ -154,6 +170,14 @@ def make_cases(work):
         c.channel(f"joint{j}", j, "rotation", t, random_quats(rng, 40, 0.3))
     c.channel("joint0", 0, "translation", t, rng.normal(size=(40, 3)))
     c.end()
+    # A morph target's weights, which keyrot keeps as they are.
+    body = c.b.json["nodes"][-1]
+    c.b.json["meshes"][0]["weights"] = [0.0]
+    c.b.json["meshes"][0]["primitives"][0]["targets"] = [{"POSITION": c.b.accessor(np.zeros((3, 3)), minmax=True)}]
+    anim = c.b.json["animations"][0]
+    anim["samplers"].append({"input": c.b.accessor(t[:5]), "output": c.b.accessor(np.linspace(0, 1, 5))})
+    anim["channels"].insert(3, {"sampler": len(anim["samplers"]) - 1,
+                                "target": {"node": c.b.json["nodes"].index(body), "path": "weights"}})
     cases.append((c, "glb"))
 
     # STEP rotations, a first key after 0 s, in a .gltf with its .bin.
@@ -230,8 +254,11 @@ def expected_frames(track, fps):
     times = [x for ch in ("rotation", "translation") if ch in track for x in track[ch][0]]
     first, last = min(times), max(times)
     frames = []
-    for k in range(math.ceil(first * fps - 1e-9), math.floor(last * fps + 1e-9) + 1):
+    keys = sorted(set(times))
+    for k in range(math.ceil(first * fps - near_key(first, fps)), math.floor(last * fps + near_key(last, fps)) + 1):
         t = k / fps
+        # A frame that near a key of the track (of either channel) is at it.
+        t = next((key for key in keys if abs(t - key) * fps <= near_key(key, fps)), t)
         if "rotation" in track:
             ts, vs, interp = track["rotation"]
             q = curve_value(ts, vs, interp, t, True)
@@ -311,6 +338,214 @@ def check_convert(case):
                 return
     checks += 1
     print(f"ok: convert {case.name}: keys as stored")
+
+
+# ---------------------------------------------------------------- glTF output
+def gltf_parts(path):
+    """The JSON of a .glb or .gltf, and its buffer's bytes (the BIN chunk, the .bin, a data: URI)."""
+    data = open(path, "rb").read()
+    if data[:4] == b"glTF":
+        n = struct.unpack_from("<I", data, 12)[0]
+        doc = json.loads(data[20:20 + n])
+        return doc, data[20 + n + 8:]
+    doc = json.loads(data)
+    uri = doc["buffers"][0]["uri"]
+    if uri.startswith("data:"):
+        import base64
+        return doc, base64.b64decode(uri.split(",", 1)[1])
+    return doc, open(os.path.join(os.path.dirname(path), uri), "rb").read()
+
+
+def accessor_content(doc, binary, i):
+    """An accessor as what it holds: its fields but where it is, and its elements' bytes."""
+    a = dict(doc["accessors"][i])
+    view = doc["bufferViews"][a.pop("bufferView")]
+    offset = view.get("byteOffset", 0) + a.pop("byteOffset", 0)
+    size = {5120: 1, 5121: 1, 5122: 2, 5123: 2, 5125: 4, 5126: 4}[a["componentType"]]
+    width = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4, "MAT4": 16}[a["type"]]
+    stride = view.get("byteStride", size * width)
+    elements = b"".join(binary[offset + k * stride: offset + k * stride + size * width] for k in range(a["count"]))
+    return json.dumps(a, sort_keys=True), elements
+
+
+def meshes_by_content(doc, binary):
+    """The meshes and skins with each accessor index replaced by what the accessor holds."""
+    def resolve(x, key=None):
+        if isinstance(x, dict):
+            return {k: resolve(v, k) for k, v in x.items()}
+        if isinstance(x, list):
+            return [resolve(v, key) for v in x]
+        if isinstance(x, int) and key in ("POSITION", "JOINTS_0", "WEIGHTS_0", "indices", "inverseBindMatrices"):
+            return accessor_content(doc, binary, x)
+        return x
+    return resolve(doc.get("meshes")), resolve(doc.get("skins"))
+
+
+def frames_by_key(text):
+    """Rows by track and time to 1e-6 s: a glTF file stores times as 32-bit floats."""
+    return {(r["track"], round(float(r["time"]), 6)): r for r in read_csv(text)}
+
+
+def compare_frames(label, expected_text, actual_text, tol_deg):
+    """Every frame of the first CSV in the second, within tol_deg and float32 translation accuracy."""
+    expected, actual = frames_by_key(expected_text), frames_by_key(actual_text)
+    if set(expected) != set(actual):
+        fail(f"{label}: frames {len(actual)}, expected {len(expected)} ({sorted(set(expected) ^ set(actual))[:3]})")
+        return False
+    worst = 0.0
+    for k, e in expected.items():
+        a = actual[k]
+        q = lambda r: [float(r["qx"]), float(r["qy"]), float(r["qz"]), float(r["qw"])]
+        worst = max(worst, angle_deg(q(a), q(e)))
+        if e.get("tx"):
+            for c in ("tx", "ty", "tz"):
+                if abs(float(a[c]) - float(e[c])) > 1e-6 * max(1.0, abs(float(e[c]))):
+                    fail(f"{label}: {k}: {c} {a[c]}, expected {e[c]}")
+                    return False
+    if worst > tol_deg:
+        fail(f"{label}: largest difference {worst:.3g} deg")
+        return False
+    return True
+
+
+def check_gltf_output(case, fps, how, written):
+    """resample into .glb or .gltf: reads back as the CSV frames; the rest of the file kept; no dead bytes."""
+    global checks
+    stem = os.path.splitext(case.path)[0]
+    out = f"{stem}_{fps}.{how}"
+    status, _, err = run(["resample", case.path, "--fps", str(fps), "-o", out])
+    if status != 0:
+        fail(f"{out}: status {status}: {err.strip()}")
+        return
+    written.append(out)
+    _, direct, _ = run(["resample", case.path, "--fps", str(fps), "--to", "csv", "--rep", "quat"])
+    status, back, err = run(["convert", out, "--to", "csv", "--rep", "quat"])
+    if status != 0 or not compare_frames(f"{out} read back", direct, back, FLOAT32_DEG):
+        if status:
+            fail(f"{out}: read back: {err.strip()}")
+        return
+    din, bin_in = gltf_parts(case.path)
+    dout, bin_out = gltf_parts(out)
+    for key in ("asset", "scene", "scenes", "nodes"):
+        if din.get(key) != dout.get(key):
+            fail(f"{out}: '{key}' not kept")
+            return
+    if meshes_by_content(din, bin_in) != meshes_by_content(dout, bin_out):
+        fail(f"{out}: meshes or skins (or their accessors' bytes) not kept")
+        return
+    used = sum(v["byteLength"] + 3 for v in dout["bufferViews"])
+    if len(bin_out) > used:
+        fail(f"{out}: {len(bin_out)} bytes of buffer, {used} in its bufferViews: old animation data left behind")
+        return
+    for anim_in, anim_out in zip(din["animations"], dout["animations"]):
+        if len(anim_out["samplers"]) > len(anim_out["channels"]):
+            fail(f"{out}: {len(anim_out['samplers'])} samplers for {len(anim_out['channels'])} channels")
+            return
+        for c_in, c_out in zip(anim_in["channels"], anim_out["channels"]):
+            if c_in["target"] != c_out["target"]:
+                fail(f"{out}: channel order not kept")
+                return
+            if c_in["target"]["path"] == "weights":
+                kept = [accessor_content(d, b, d["animations"][0]["samplers"][c["sampler"]][end])
+                        for d, b, c in ((din, bin_in, c_in), (dout, bin_out, c_out)) for end in ("input", "output")]
+                if kept[:2] != kept[2:]:
+                    fail(f"{out}: the weights channel was changed")
+                    return
+    # Resampled again at its own rate: the same frames (its keys, as 32-bit floats again).
+    again = f"{stem}_{fps}_again.{how}"
+    run(["resample", out, "--fps", str(fps), "-o", again])
+    _, again_csv, _ = run(["convert", again, "--to", "csv", "--rep", "quat"])
+    if not compare_frames(f"{again} (from {out} at its own rate)", back, again_csv, FLOAT32_DEG):
+        return
+    written.append(again)
+    checks += 1
+    print(f"ok: {out}: reads back as the frames, the rest of the file kept, {len(bin_out)} bytes of buffer")
+
+
+def check_new_files(work, written):
+    """Tracks from CSV and JSON into a new glTF file: a node per track, frames as in CSV."""
+    global checks
+    data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
+    for name in sorted(os.listdir(data)):
+        if not name.endswith((".csv", ".json")):
+            continue
+        source = os.path.join(data, name)
+        for how in ("glb", "gltf"):
+            out = os.path.join(work, f"new_{name}.{how}")
+            status, _, err = run(["resample", source, "--euler", "ZYX", "-o", out])
+            if status != 0:
+                fail(f"{out}: {err.strip()}")
+                continue
+            written.append(out)
+            _, direct, _ = run(["resample", source, "--euler", "ZYX", "--to", "csv", "--rep", "quat"])
+            _, back, _ = run(["convert", out, "--to", "csv", "--rep", "quat"])
+            if "track," not in direct:  # a file without tracks: the one node is "track"
+                direct = direct.replace("frame,", "track,frame,", 1)
+                direct = "\n".join(line if line.startswith(("#", "track")) or not line else "track," + line
+                                   for line in direct.split("\n"))
+            if compare_frames(f"{out} read back", direct, back, FLOAT32_DEG):
+                checks += 1
+                print(f"ok: {out}: reads back as the frames")
+    # On standard output: a .gltf with its buffer as a data: URI.
+    out = os.path.join(work, "stdout.gltf")
+    status, text, err = run(["resample", os.path.join(data, "walk.csv"), "--to", "gltf"])
+    with open(out, "w") as f:
+        f.write(text)
+    if status != 0 or '"data:application/octet-stream;base64,' not in text:
+        fail(f"--to gltf on standard output: status {status}, {err.strip()}")
+    else:
+        written.append(out)
+        checks += 1
+
+
+def check_cubic_kept(case, work, written):
+    """convert from glTF to glTF keeps CUBICSPLINE samplers, values and tangents to the bit."""
+    global checks
+    out = os.path.join(work, "cubic_converted.glb")
+    status, _, err = run(["convert", case.path, "-o", out])
+    if status != 0:
+        fail(f"{out}: {err.strip()}")
+        return
+    written.append(out)
+    din, bin_in = gltf_parts(case.path)
+    dout, bin_out = gltf_parts(out)
+    a_in, a_out = din["animations"][0], dout["animations"][0]
+    for c_in, c_out in zip(a_in["channels"], a_out["channels"]):
+        s_in, s_out = a_in["samplers"][c_in["sampler"]], a_out["samplers"][c_out["sampler"]]
+        if s_out.get("interpolation") != "CUBICSPLINE" or any(
+                accessor_content(din, bin_in, s_in[e])[1] != accessor_content(dout, bin_out, s_out[e])[1]
+                for e in ("input", "output")):
+            fail(f"{out}: channel {c_in['target']} not kept as CUBICSPLINE to the bit")
+            return
+    checks += 1
+    print(f"ok: {out}: CUBICSPLINE samplers kept to the bit")
+
+
+def check_step_output(case, work, written):
+    global checks
+    out = os.path.join(work, "stepped.glb")
+    status, _, err = run(["resample", case.path, "--method", "step", "-o", out])
+    doc, _ = gltf_parts(out) if status == 0 else ({}, b"")
+    if status != 0 or any(a["samplers"][c["sampler"]].get("interpolation") != "STEP" for a in doc["animations"]
+                          for c in a["channels"] if c["target"]["path"] in ("rotation", "translation")):
+        fail(f"{out}: --method step: expected STEP samplers ({err.strip()})")
+        return
+    written.append(out)
+    checks += 1
+
+
+def validate(files):
+    global checks
+    if not VALIDATOR:
+        print(f"gltf_test: the glTF Validator is not installed (.ci/deps test): {len(files)} outputs not validated")
+        return
+    p = subprocess.run(["node", VALIDATOR] + files, capture_output=True, text=True)
+    bad = [line for line in p.stdout.splitlines() if not line.endswith(": 0 errors, 0 warnings")]
+    if p.returncode != 0 or bad:
+        fail("glTF Validator: " + "; ".join(bad[:10]) + p.stderr[-500:])
+    else:
+        checks += 1
+        print(f"ok: glTF Validator: {len(files)} outputs, no errors, no warnings")
 
 
 # ---------------------------------------------------------------- bad files
@@ -424,6 +659,14 @@ def main():
             check_resample(cases[0], 30, stdin=f.read())
         with open(cases[2].path, "rb") as f:  # a .gltf on standard input, its buffer a data: URI
             check_resample(cases[2], 30, stdin=f.read())
+        written = []
+        for case in cases:
+            check_gltf_output(case, 30, "glb", written)
+            check_gltf_output(case, 24, "gltf", written)
+        check_cubic_kept(cases[2], work, written)
+        check_step_output(cases[0], work, written)
+        check_new_files(work, written)
+        validate(written)
         check_bad(work)
     print(f"gltf_test: {checks} checks, {len(failures)} failures")
     return 1 if failures else 0

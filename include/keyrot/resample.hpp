@@ -20,6 +20,10 @@ struct resample_options {
     /// How translations are interpolated, where not as `how` says: step
     /// holds, cubicspline is Hermite, any other method is linear.
     std::optional<method> translation_how = std::nullopt;
+    /// The relative rounding of the key times as stored (2^-24 for glTF's
+    /// 32-bit floats): a frame that close to a key is at it, beyond the
+    /// grid's own tolerance of 1e-9 frame.
+    double time_rounding = 0;
 };
 
 /// Where frames go as they are made.
@@ -54,9 +58,10 @@ private:
     void frames_until(double time, quat q);  // frames at a key time, up to `time` (within tolerance)
     void out(double frame, quat q);
     void resolve_translations(bool end);
+    /// How far, in seconds, a frame may be from a key at `key_time` and count as at it.
+    double tolerance(double key_time) const;
 
     resample_options opts_;
-    double key_tol_;  // seconds
     segment_builder builder_;
     frame_sink emit_;
     bool translations_;

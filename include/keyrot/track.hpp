@@ -76,10 +76,11 @@ struct key {
 
 /// How a file says a track is interpolated (glTF's samplers): the
 /// rotation's method, and the translation's (step holds, cubicspline is
-/// Hermite, any other is linear).
+/// Hermite, any other is linear); and how precisely it stores times.
 struct track_interpolation {
     method rotation = method::slerp;
     method translation = method::slerp;
+    double time_rounding = 0;  ///< as resample_options::time_rounding
     bool operator==(const track_interpolation&) const = default;
 };
 

@@ -22,6 +22,7 @@
 #include "ground/held_warnings.hpp"
 #include "ground/thread_start.hpp"
 #include "io/document.hpp"
+#include "io/gltf_write.hpp"
 #include "io/open.hpp"
 #include "io/output.hpp"
 
@@ -87,6 +88,8 @@ public:
     virtual void check(const document_facts& d, const std::string& source) const = 0;
     /// In one pass: checks key `k` of track `name`, whose first key is `first`, before its rows.
     virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
+    /// How a glTF file is to interpolate the rows of a track whose file states `own`.
+    virtual track_interpolation written(const std::optional<track_interpolation>& own) const = 0;
     /// A track begins (`own`: the interpolation its file states): its rows go to `row`.
     virtual void begin_track(const std::optional<euler_seq>& euler, const std::optional<track_interpolation>& own,
                              bool translation, frame_sink row) = 0;
@@ -114,12 +117,18 @@ public:
     void check(const document_facts& d, const std::string& source) const override {
         for (const auto& t : d.tracks) {
             check_method(of(t.interpolation).how, t.euler);
-            check_frame_range(t.first, t.last, t.name, opts_, source);
+            check_frame_range(t.first, t.last, t.name, of(t.interpolation), source);
         }
     }
     /// Before the key's frames: never hours of output.
     void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const override {
         check_frame_range(first, k, name, opts_, source);
+    }
+    /// Frames are LINEAR (dense enough for any method), or STEP where they are held.
+    track_interpolation written(const std::optional<track_interpolation>& own) const override {
+        const resample_options r = of(own);
+        const auto linear_or_step = [](method m) { return m == method::step ? method::step : method::slerp; };
+        return {linear_or_step(r.how), linear_or_step(r.translation_how.value_or(r.how))};
     }
     void begin_track(const std::optional<euler_seq>& euler, const std::optional<track_interpolation>& own,
                      bool translation, frame_sink row) override {
@@ -132,7 +141,9 @@ private:
     /// How a track whose file states `own` is resampled.
     resample_options of(const std::optional<track_interpolation>& own) const {
         resample_options r = opts_;
-        if (own && !method_given_) r.how = own->rotation, r.translation_how = own->translation;
+        if (!own) return r;
+        r.time_rounding = own->time_rounding;
+        if (!method_given_) r.how = own->rotation, r.translation_how = own->translation;
         return r;
     }
 
@@ -165,6 +176,10 @@ public:
                                                       d.tracks.front().name, t.name, d.tracks.front().key_fps, t.key_fps));
     }
     void check_key(const key&, const key&, const std::string&, const std::string&) const override {}
+    /// The keys as the file interpolates them (LINEAR for a file that does not say).
+    track_interpolation written(const std::optional<track_interpolation>& own) const override {
+        return own.value_or(track_interpolation{});  // (its time_rounding is not written)
+    }
     void begin_track(const std::optional<euler_seq>&, const std::optional<track_interpolation>&, bool,
                      frame_sink row) override {
         row_ = std::move(row);
@@ -314,9 +329,40 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
     });
 }
 
+/// resample or convert into a glTF file, which is written whole: every
+/// track's rows gathered as glTF stores them. A glTF input is rewritten
+/// with its samplers replaced; any other input makes a new file.
+void transform_to_gltf(const transform_plan& p, const input_source& src, std::ostream& out, warnings& warn) {
+    const document doc = read_document(src, p.in, p.reading, warn, json_reading::streamed_first);
+    const document_facts d = facts_of(doc);
+    p.rows->check(d, src.source());
+    std::vector<gltf_track> tracks;
+    for (std::size_t i = 0; i < doc.tracks.size(); ++i) {
+        const track& t = doc.tracks[i];
+        gltf_track g{t.name, p.rows->written(t.interpolation), {}, {}, {}, {}, {}, {}};
+        const bool splines = g.how.rotation == method::cubicspline || g.how.translation == method::cubicspline;
+        // Only convert writes CUBICSPLINE (a row per key, in order): row n is key n, with its spline.
+        p.rows->begin_track(t.euler, t.interpolation, d.tracks[i].translation, [&](const sample& s) {
+            const spline_key spline = splines ? *t.keys[g.times.size()].spline : spline_key{};
+            g.times.push_back(s.time);
+            g.rotations.push_back(s.rotation);
+            if (splines) g.splines.push_back(spline);
+            if (!s.translation) return;
+            g.translation_times.push_back(s.time);
+            g.translations.push_back(*s.translation);
+            if (splines) g.translation_splines.push_back(spline);
+        });
+        for (const key& k : t.keys) p.rows->add(k);
+        p.rows->end_track();
+        tracks.push_back(std::move(g));
+    }
+    write_gltf(tracks, doc.gltf.get(), p.out, p.target, out, warn);
+}
+
 /// resample or convert one input into the plan's file or `out`.
 void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
     warnings warn(err, src.source());
+    if (is_gltf(p.out)) return transform_to_gltf(p, src, out, warn);
     const bool streams = !is_gltf(p.in);  // a glTF file's tracks are read whole
     if (streams && p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn)) return;
     // Otherwise everything is validated before the first byte is written,
@@ -391,9 +437,6 @@ transform_plan plan_for(const options& o, const std::string& name, const input_s
     p.out = o.to.value_or(p.in);
     if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
     else if ((p.target = output_path(o)) && !o.to) p.out = format_of_path(*p.target).value_or(p.in);
-    if (is_gltf(p.out))
-        throw usage_error(fmt::format("{}: keyrot does not write glTF yet: expected --to csv, json or ndjson",
-                                      p.target ? *p.target : std::string("standard output")));
     return p;
 }
 

@@ -2,17 +2,27 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "keyrot/tolerances.hpp"
 
 namespace keyrot {
 
+namespace {
+
+/// How far, in frames, a frame may be from a key at `time` and count as at it.
+double tolerance_frames(double time, const resample_options& opts) {
+    return std::max(tol::grid_frames, std::fabs(time) * opts.fps * opts.time_rounding);
+}
+
+}  // namespace
+
 void check_frame_range(const key& first, const key& last, const std::string& track_name, const resample_options& opts,
                        const std::string& source) {
     const double fps = opts.fps;
-    const double first_frame = std::ceil(first.time * fps - tol::grid_frames);
-    const double last_frame = std::floor(last.time * fps + tol::grid_frames);
+    const double first_frame = std::ceil(first.time * fps - tolerance_frames(first.time, opts));
+    const double last_frame = std::floor(last.time * fps + tolerance_frames(last.time, opts));
     // Frame numbers must be exact integers in a double.
     constexpr double max_frame_number = 9007199254740992.0;  // 2^53
     for (const key* k : {&first, &last}) {
@@ -33,7 +43,6 @@ void check_frame_range(const key& first, const key& last, const std::string& tra
 track_resampler::track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, bool translations,
                                  frame_sink emit)
     : opts_(opts),
-      key_tol_(tol::grid_frames / opts.fps),
       builder_(opts.how, opts.way, seq),
       emit_(std::move(emit)),
       translations_(translations),
@@ -42,7 +51,7 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
 void track_resampler::add(const key& k) {
     if (!started_) {
         started_ = true;
-        next_frame_ = std::ceil(k.time * opts_.fps - tol::grid_frames);
+        next_frame_ = std::ceil(k.time * opts_.fps - tolerance_frames(k.time, opts_));
     }
     if (k.translation) {
         const spline_key spline = k.spline.value_or(spline_key{});
@@ -63,15 +72,17 @@ void track_resampler::finish() {
     resolve_translations(true);
 }
 
+double track_resampler::tolerance(double key_time) const { return tolerance_frames(key_time, opts_) / opts_.fps; }
+
 void track_resampler::frames_of(const segment& s) {
     // frames in [t0, t1): at t0 the key itself, inside by the curve; a frame
     // within tolerance of t1 belongs to the next key. Within tolerance of
     // both (keys closer together than it), the nearer key's, so that at a
     // key's exact time the frame is that key.
     const auto time = [this] { return next_frame_ / opts_.fps; };
-    const auto in_segment = [&] { return time() <= s.t1 - key_tol_; };
+    const auto in_segment = [&] { return time() <= s.t1 - tolerance(s.t1); };
     const double from_start = std::fabs(time() - s.t0);
-    if (from_start <= key_tol_ && from_start <= std::fabs(time() - s.t1)) out(next_frame_, s.q0), ++next_frame_;
+    if (from_start <= tolerance(s.t0) && from_start <= std::fabs(time() - s.t1)) out(next_frame_, s.q0), ++next_frame_;
     // Dense keys (motion capture at 120 Hz, say) leave most segments without
     // a frame inside: they never set up a curve.
     if (!in_segment()) return;
@@ -80,7 +91,7 @@ void track_resampler::frames_of(const segment& s) {
 }
 
 void track_resampler::frames_until(double time, quat q) {
-    for (; next_frame_ / opts_.fps <= time + key_tol_; ++next_frame_) out(next_frame_, q);
+    for (; next_frame_ / opts_.fps <= time + tolerance(time); ++next_frame_) out(next_frame_, q);
 }
 
 void track_resampler::out(double frame, quat q) {
@@ -121,14 +132,15 @@ void track_resampler::resolve_translations(bool end) {
     while (!pending_.empty()) {
         sample& s = pending_.front();
         std::size_t j = 0;  // the first translation key at or after the frame
-        while (j < keys.size() && keys[j].time < s.time - key_tol_) ++j;
+        while (j < keys.size() && keys[j].time < s.time - tolerance(keys[j].time)) ++j;
         if (j == keys.size()) {
             if (!end) return;
             if (!keys.empty()) s.translation = keys.back().value;
-        } else if (keys[j].time - s.time <= key_tol_ || j == 0) {
+        } else if (keys[j].time - s.time <= tolerance(keys[j].time) || j == 0) {
             // Of keys within tolerance, the nearer; one not yet here may be nearer still.
             while (j + 1 < keys.size() && std::fabs(keys[j + 1].time - s.time) < std::fabs(keys[j].time - s.time)) ++j;
-            if (!end && j + 1 == keys.size() && keys[j].time != s.time && keys[j].time - s.time <= key_tol_) return;
+            if (!end && j + 1 == keys.size() && keys[j].time != s.time && keys[j].time - s.time <= tolerance(keys[j].time))
+                return;
             s.translation = keys[j].value;
         } else {
             s.translation = translation_between(keys[j - 1], keys[j], s.time);

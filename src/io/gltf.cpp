@@ -47,7 +47,7 @@ channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std:
     const std::string at = fmt::format("{}: {}", file.source, path);
     if (!sampler.is_object() || !sampler.contains("input") || !sampler.contains("output"))
         throw input_error(at, "expected an object with input and output");
-    const std::string interpolation = sampler.value("interpolation", "LINEAR");
+    const std::string interpolation = string_member(sampler, "interpolation", "LINEAR", at);
     if (interpolation != "LINEAR" && interpolation != "STEP" && interpolation != "CUBICSPLINE")
         throw input_error(at, fmt::format("interpolation '{}': expected LINEAR, STEP or CUBICSPLINE", excerpt(interpolation)));
     c.how = method_of(interpolation);
@@ -101,7 +101,7 @@ std::pair<std::array<double, 4>, std::array<double, 4>> evaluate(const channel_c
 
 /// A node's channels in one animation.
 struct node_channels {
-    std::size_t node = 0;
+    gltf_track_origin origin;
     std::optional<channel_curve> rotation, translation;
 };
 
@@ -173,7 +173,7 @@ std::vector<node_channels> channels_of(gltf_file& file, std::size_t a, warnings&
         if (!ch.is_object() || !ch.contains("target") || !ch["target"].is_object() || !ch.contains("sampler"))
             throw input_error(here, "expected an object with a sampler and a target");
         const gltf_json& target = ch["target"];
-        const std::string what = target.value("path", "");
+        const std::string what = string_member(target, "path", "", here + ".target");
         if (!target.contains("node")) {
             warn.once("gltf-no-node", fmt::format("{}.channels[{}]: a channel without a node (an extension's) is left out",
                                                   path, c));
@@ -190,9 +190,11 @@ std::vector<node_channels> channels_of(gltf_file& file, std::size_t a, warnings&
             throw input_error(here + ".sampler", fmt::format("{}: expected an index into {}.samplers", excerpt(ch["sampler"].dump()), path));
         const std::size_t s = ch["sampler"];
         const auto [it, added] = index.emplace(node, nodes.size());
-        if (added) nodes.push_back({node, std::nullopt, std::nullopt});
-        auto& slot = what == "rotation" ? nodes[it->second].rotation : nodes[it->second].translation;
+        if (added) nodes.push_back({{a, node, std::nullopt, std::nullopt}, std::nullopt, std::nullopt});
+        node_channels& n = nodes[it->second];
+        auto& slot = what == "rotation" ? n.rotation : n.translation;
         if (slot) throw input_error(here, fmt::format("node {}'s {} is animated twice in one animation: expected once", node, what));
+        (what == "rotation" ? n.origin.rotation : n.origin.translation) = c;
         slot = read_sampler(file, samplers[s], fmt::format("{}.samplers[{}]", path, s), what == "rotation" ? 4 : 3);
     }
     return nodes;
@@ -207,7 +209,7 @@ track track_of(const gltf_file& file, const node_channels& n, std::string name, 
     times.erase(std::unique(times.begin(), times.end()), times.end());
     const bool spline = (n.rotation && n.rotation->how == method::cubicspline) ||
                         (n.translation && n.translation->how == method::cubicspline);
-    const quat rest = n.rotation ? quat{} : rest_rotation(file, n.node);
+    const quat rest = n.rotation ? quat{} : rest_rotation(file, n.origin.node);
     track_builder builder(name, {}, ro.settings);
     std::vector<std::optional<spline_key>> splines;
     for (const double t : times) {
@@ -225,9 +227,10 @@ track track_of(const gltf_file& file, const node_channels& n, std::string name, 
                 v = n.rotation->get(i, 0);
                 if (n.rotation->how == method::cubicspline) {
                     // The first key's in-tangent and the last's out-tangent do nothing in glTF; zero, they
-                    // keep the rotation held where the translation's keys reach beyond them.
-                    const auto in = i == 0 ? std::array<double, 4>{} : n.rotation->get(i, -1);
-                    const auto out = i + 1 == n.rotation->keys() ? std::array<double, 4>{} : n.rotation->get(i, 1);
+                    // keep the rotation held where the translation's keys reach beyond it.
+                    const bool held_before = i == 0 && times.front() < t, held_after = i + 1 == n.rotation->keys() && times.back() > t;
+                    const auto in = held_before ? std::array<double, 4>{} : n.rotation->get(i, -1);
+                    const auto out = held_after ? std::array<double, 4>{} : n.rotation->get(i, 1);
                     s.rotation_in = {in[0], in[1], in[2], in[3]}, s.rotation_out = {out[0], out[1], out[2], out[3]};
                 }
             } else {
@@ -240,7 +243,7 @@ track track_of(const gltf_file& file, const node_channels& n, std::string name, 
             const quat q = keyed || !(norm(s.rotation) > 0) ? s.rotation : normalized(s.rotation);
             raw.values = {q.w, q.x, q.y, q.z};
         } else {
-            raw.at.path = fmt::format("nodes[{}].rotation", n.node);
+            raw.at.path = fmt::format("nodes[{}].rotation", n.origin.node);
             raw.values = {rest.w, rest.x, rest.y, rest.z};
             s.rotation = rest;
         }
@@ -264,7 +267,7 @@ track track_of(const gltf_file& file, const node_channels& n, std::string name, 
     track result = std::move(builder).finish(warn);
     for (std::size_t i = 0; i < result.keys.size(); ++i) result.keys[i].spline = splines[i];
     result.interpolation = track_interpolation{n.rotation ? n.rotation->how : method::step,
-                                               n.translation ? n.translation->how : method::slerp};
+                                               n.translation ? n.translation->how : method::slerp, 0x1p-24};
     return result;
 }
 
@@ -274,21 +277,24 @@ document read_gltf(std::istream& in, format f, const read_options& ro, warnings&
     const std::filesystem::path directory = std::filesystem::path(ro.source).parent_path();
     gltf_file file = load_gltf(in, f, ro.source, directory.empty() ? "." : directory.string(), ro.max_bytes);
     const std::vector<std::size_t> animations = chosen_animations(file, ro.animation);
-    document doc{ro.source, f, true, {}};
+    auto source = std::make_shared<gltf_source>();
+    document doc{ro.source, f, true, {}, source};
     std::set<std::string> names;
     for (const std::size_t a : animations) {
         for (const node_channels& n : channels_of(file, a, warn)) {
-            std::string name = node_name(file, n.node);
+            std::string name = node_name(file, n.origin.node);
             if (animations.size() > 1) name = animation_name(file, a) + "/" + name;
-            if (names.contains(name)) name += fmt::format("#node{}", n.node);  // two nodes of one name
-            check_track_name(name, fmt::format("{}: nodes[{}].name", ro.source, n.node));
+            if (names.contains(name)) name += fmt::format("#node{}", n.origin.node);  // two nodes of one name
+            check_track_name(name, fmt::format("{}: nodes[{}].name", ro.source, n.origin.node));
             names.insert(name);
             doc.tracks.push_back(track_of(file, n, name, ro, warn));
+            source->origins.push_back(n.origin);
         }
     }
     if (doc.tracks.empty())
         throw input_error(ro.source, "no rotation or translation channels: expected an animation of a node's rotation "
                                      "or translation");
+    source->file = std::move(file);
     return doc;
 }
 

@@ -6,9 +6,24 @@
 #include <string>
 
 #include "io/document.hpp"
+#include "io/gltf_file.hpp"
 #include "io/io.hpp"
 
 namespace keyrot {
+
+/// Where a track of a glTF file came from: its animation and node, and the
+/// channels (indices into the animation's channels) it merges.
+struct gltf_track_origin {
+    std::size_t animation = 0, node = 0;
+    std::optional<std::size_t> rotation, translation;
+};
+
+/// A glTF input, kept for a glTF output that rewrites it: the file, and
+/// the origin of each of the document's tracks, in their order.
+struct gltf_source {
+    gltf_file file;
+    std::vector<gltf_track_origin> origins;
+};
 
 /// The animations of a glTF file (`f`: gltf or glb; relative buffer URIs
 /// from the directory of ro.source), or the one ro.animation names. A track is named after
@@ -17,7 +32,7 @@ namespace keyrot {
 /// at different times, each channel gets a key at the other's times too,
 /// its value on its own curve there (so the curve is the same). Throws
 /// input_error naming the JSON path: "walk.glb: animations[0].samplers[2]
-/// .output: accessor 14 ...".
+/// .output: accessor 14 ...". The document keeps the file (document::gltf).
 document read_gltf(std::istream& in, format f, const read_options& ro, warnings& warn);
 
 }  // namespace keyrot

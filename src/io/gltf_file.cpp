@@ -75,7 +75,7 @@ void check_header(const gltf_json& json, const std::string& source) {
     if (asset == json.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
         throw input_error(source, "asset.version: expected the glTF version, \"2.0\"");
     const std::string version = (*asset)["version"];
-    const std::string min_version = asset->value("minVersion", version);
+    const std::string min_version = string_member(*asset, "minVersion", version, source + ": asset");
     if (!version.starts_with("2.") || !min_version.starts_with("2."))
         throw input_error(source, fmt::format("asset.version: glTF {}: expected 2.0", excerpt(version)));
     if (const auto required = json.find("extensionsRequired"); required != json.end() && required->is_array())
@@ -125,8 +125,9 @@ std::optional<std::string> base64_decoded(std::string_view text) {
     return out;
 }
 
-/// Buffer `i`'s bytes, read on first use.
-const std::string& buffer(gltf_file& file, std::size_t i) {
+}  // namespace
+
+const std::string& buffer_bytes(gltf_file& file, std::size_t i) {
     if (file.buffers.size() <= i) file.buffers.resize(i + 1);
     if (file.buffers[i]) return *file.buffers[i];
     const gltf_json& b = top_array(file, "buffers")[i];
@@ -165,6 +166,8 @@ const std::string& buffer(gltf_file& file, std::size_t i) {
     file.buffers[i] = std::move(bytes);
     return *file.buffers[i];
 }
+
+namespace {
 
 struct component_type {
     int code;
@@ -212,12 +215,6 @@ std::size_t components_of(std::string_view type) {
     return 0;
 }
 
-std::size_t unsigned_member(const gltf_json& object, const char* name, std::size_t fallback, const std::string& at) {
-    const auto it = object.find(name);
-    if (it == object.end()) return fallback;
-    if (!it->is_number_unsigned()) throw input_error(at, fmt::format("{}: expected a non-negative integer", name));
-    return *it;
-}
 
 /// The bytes of bufferView `view` (checked against its buffer), and its stride.
 std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf_json& view, const std::string& at) {
@@ -226,7 +223,7 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
     const std::string here = fmt::format("{}: bufferViews[{}]", file.source, v);
     if (!bv.is_object() || !bv.contains("buffer")) throw input_error(here, "expected an object with a buffer");
     const std::size_t b = index_into(file, bv["buffer"], "buffers", here);
-    const std::string& bytes = buffer(file, b);
+    const std::string& bytes = buffer_bytes(file, b);
     const std::size_t offset = unsigned_member(bv, "byteOffset", 0, here);
     const std::size_t length = unsigned_member(bv, "byteLength", 0, here);
     if (offset > bytes.size() || length > bytes.size() - offset)
@@ -236,6 +233,22 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
 }
 
 }  // namespace
+
+std::size_t unsigned_member(const gltf_json& object, const char* name, std::size_t fallback, const std::string& at) {
+    if (!object.is_object()) throw input_error(at, "expected an object");
+    const auto it = object.find(name);
+    if (it == object.end()) return fallback;
+    if (!it->is_number_unsigned()) throw input_error(at, fmt::format("{}: expected a non-negative integer", name));
+    return *it;
+}
+
+std::string string_member(const gltf_json& object, const char* name, std::string_view fallback, const std::string& at) {
+    if (!object.is_object()) throw input_error(at, "expected an object");
+    const auto it = object.find(name);
+    if (it == object.end()) return std::string(fallback);
+    if (!it->is_string()) throw input_error(at, fmt::format("{}: expected a string", name));
+    return *it;
+}
 
 const gltf_json& top_array(const gltf_file& file, const char* name) {
     static const gltf_json empty = gltf_json::array();
@@ -280,12 +293,12 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
     const gltf_json& acc = top_array(file, "accessors")[a];
     const std::string here = fmt::format("{}: accessor {}", at, a);
     if (!acc.is_object()) throw input_error(here, "expected an object");
-    const std::string type = acc.value("type", "");
+    const std::string type = string_member(acc, "type", "", here);
     if (type != kind.type)
         throw input_error(here, fmt::format("type '{}': expected {}", excerpt(type), kind.type));
     const int code = acc.contains("componentType") && acc["componentType"].is_number_integer() ? acc["componentType"].get<int>() : 0;
     const std::optional<component_type> c = component_of(code);
-    const bool normalized = acc.value("normalized", false);
+    const bool normalized = acc.contains("normalized") && acc["normalized"].is_boolean() && acc["normalized"].get<bool>();
     if (!c || !(code == 5126 || (kind.normalized_integers && normalized && c->bytes < 4)))
         throw input_error(here, fmt::format("componentType {}{}: expected FLOAT (5126){}", code,
                                             normalized ? ", normalized" : "",
@@ -320,7 +333,9 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
         if (!indices.is_object() || !indices.contains("bufferView") || !substitutes.is_object() ||
             !substitutes.contains("bufferView"))
             throw input_error(there, "indices and values: expected objects with a bufferView");
-        const int index_code = indices.value("componentType", 0);
+        const int index_code = indices.contains("componentType") && indices["componentType"].is_number_integer()
+                                   ? indices["componentType"].get<int>()
+                                   : 0;
         const std::optional<component_type> ic = component_of(index_code);
         if (!ic || ic->is_signed) throw input_error(there, fmt::format("indices.componentType {}: expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT", index_code));
         const auto [index_bytes, s1] = buffer_view(file, indices["bufferView"], there);

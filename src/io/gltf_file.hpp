@@ -48,8 +48,20 @@ struct accessor_kind {
 std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const std::string& path,
                                   const accessor_kind& kind);
 
+/// Buffer `i`'s bytes (the BIN chunk, a data: URI's, a file's), read on
+/// first use. Precondition: i indexes buffers.
+const std::string& buffer_bytes(gltf_file& file, std::size_t i);
+
 /// The array `name` of the file's JSON ("nodes"), empty when there is none.
 const gltf_json& top_array(const gltf_file& file, const char* name);
+
+/// Member `name` of `object` as a non-negative integer, `fallback` where
+/// there is none; an input_error at `at` for anything else.
+std::size_t unsigned_member(const gltf_json& object, const char* name, std::size_t fallback, const std::string& at);
+
+/// Member `name` of `object` as a string, `fallback` where there is none;
+/// an input_error at `at` for anything else.
+std::string string_member(const gltf_json& object, const char* name, std::string_view fallback, const std::string& at);
 
 /// `value` as an index into `array` (of `what`: "node"), or an input_error at `path`.
 std::size_t index_into(const gltf_file& file, const gltf_json& value, const char* array, const std::string& path);

@@ -1,0 +1,419 @@
+#include "io/gltf_write.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "io/output.hpp"
+
+namespace keyrot {
+namespace {
+
+/// Extensions whose references to accessors and bufferViews this writer
+/// renumbers, or which hold none: a file that uses any other is not
+/// rewritten, since an index it holds could come to name the wrong data.
+const std::set<std::string, std::less<>> renumbered_or_harmless = {
+    "EXT_lights_image_based", "EXT_mesh_gpu_instancing", "EXT_texture_webp", "KHR_animation_pointer",
+    "KHR_draco_mesh_compression", "KHR_lights_punctual", "KHR_materials_anisotropy", "KHR_materials_clearcoat",
+    "KHR_materials_dispersion", "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_iridescence",
+    "KHR_materials_pbrSpecularGlossiness", "KHR_materials_sheen", "KHR_materials_specular",
+    "KHR_materials_transmission", "KHR_materials_unlit", "KHR_materials_variants", "KHR_materials_volume",
+    "KHR_mesh_quantization", "KHR_texture_basisu", "KHR_texture_transform", "KHR_xmp_json_ld", "MSFT_lod",
+    "MSFT_texture_dds"};
+
+/// Calls f on each member of `j` at `path` (names; "*" for every element
+/// or member) that exists.
+template <class F>
+void at_path(gltf_json& j, std::initializer_list<const char*> path, F&& f) {
+    const auto walk = [&](auto& self, gltf_json& here, const char* const* step, const char* const* end) -> void {
+        if (step == end) return f(here);
+        if (std::strcmp(*step, "*") == 0) {
+            if (here.is_array() || here.is_object())
+                for (auto& element : here) self(self, element, step + 1, end);
+        } else if (here.is_object()) {
+            if (const auto it = here.find(*step); it != here.end()) self(self, *it, step + 1, end);
+        }
+    };
+    walk(walk, j, path.begin(), path.end());
+}
+
+/// f(reference) for every reference to an accessor the writer knows of.
+template <class F>
+void accessor_refs(gltf_json& j, F&& f) {
+    at_path(j, {"meshes", "*", "primitives", "*", "attributes", "*"}, f);
+    at_path(j, {"meshes", "*", "primitives", "*", "indices"}, f);
+    at_path(j, {"meshes", "*", "primitives", "*", "targets", "*", "*"}, f);
+    at_path(j, {"skins", "*", "inverseBindMatrices"}, f);
+    at_path(j, {"animations", "*", "samplers", "*", "input"}, f);
+    at_path(j, {"animations", "*", "samplers", "*", "output"}, f);
+    at_path(j, {"nodes", "*", "extensions", "EXT_mesh_gpu_instancing", "attributes", "*"}, f);
+}
+
+/// f(reference) for every reference to a bufferView the writer knows of.
+template <class F>
+void view_refs(gltf_json& j, F&& f) {
+    at_path(j, {"accessors", "*", "bufferView"}, f);
+    at_path(j, {"accessors", "*", "sparse", "indices", "bufferView"}, f);
+    at_path(j, {"accessors", "*", "sparse", "values", "bufferView"}, f);
+    at_path(j, {"images", "*", "bufferView"}, f);
+    at_path(j, {"meshes", "*", "primitives", "*", "extensions", "KHR_draco_mesh_compression", "bufferView"}, f);
+}
+
+/// Keeps the elements of top-level array `name` whose index `keep` holds,
+/// and renumbers the references `refs` visits.
+template <class Refs>
+void compact(gltf_json& j, const char* name, const std::vector<bool>& keep, Refs&& refs) {
+    std::vector<std::size_t> renumbered(keep.size(), 0);
+    gltf_json array = gltf_json::array();
+    for (std::size_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) renumbered[i] = array.size(), array.push_back(std::move(j[name][i]));
+    refs(j, [&](gltf_json& ref) {
+        if (ref.is_number_unsigned() && ref.get<std::size_t>() < keep.size()) ref = renumbered[ref.get<std::size_t>()];
+    });
+    if (array.empty()) j.erase(name);
+    else j[name] = std::move(array);
+}
+
+/// The binary buffer of the output, its bufferViews and accessors appended to.
+class buffer_builder {
+public:
+    explicit buffer_builder(gltf_json& json) : json_(json) {}
+    std::string bytes;
+
+    /// A bufferView of `data`, starting at an offset with the given remainder mod 4.
+    std::size_t view(std::string_view data, std::size_t remainder = 0) {
+        while (bytes.size() % 4 != remainder) bytes += '\0';
+        gltf_json v = gltf_json::object();
+        v["buffer"] = 0;
+        v["byteOffset"] = bytes.size();
+        v["byteLength"] = data.size();
+        bytes += data;
+        return append("bufferViews", std::move(v));
+    }
+
+    /// A FLOAT accessor of `values` (`width` per element), with min and max when `bounds`.
+    std::size_t accessor(const std::vector<float>& values, std::size_t width, bool bounds) {
+        std::string data(values.size() * 4, '\0');
+        for (std::size_t i = 0; i < values.size(); ++i) {
+            std::uint32_t raw;
+            std::memcpy(&raw, &values[i], 4);
+            for (std::size_t b = 0; b < 4; ++b) data[4 * i + b] = static_cast<char>(raw >> (8 * b) & 0xff);
+        }
+        gltf_json a = gltf_json::object();
+        a["bufferView"] = view(data);
+        a["componentType"] = 5126;
+        a["count"] = values.size() / width;
+        a["type"] = width == 1 ? "SCALAR" : width == 3 ? "VEC3" : "VEC4";
+        if (bounds) {
+            std::vector<float> lo(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(width)), hi = lo;
+            for (std::size_t i = 0; i < values.size(); ++i)
+                lo[i % width] = std::min(lo[i % width], values[i]), hi[i % width] = std::max(hi[i % width], values[i]);
+            a["min"] = lo, a["max"] = hi;
+        }
+        return append("accessors", std::move(a));
+    }
+
+private:
+    std::size_t append(const char* name, gltf_json value) {
+        if (!json_.contains(name)) json_[name] = gltf_json::array();
+        json_[name].push_back(std::move(value));
+        return json_[name].size() - 1;
+    }
+    gltf_json& json_;
+};
+
+float single(double v, const std::string& track, const char* what) {
+    const auto f = static_cast<float>(v);
+    if (!std::isfinite(f))
+        throw error(fmt::format("track '{}': {} {} is beyond a 32-bit float: expected what glTF can store", track, what, v));
+    return f;
+}
+
+/// Times as 32-bit floats, still strictly increasing.
+std::vector<float> time_values(const std::vector<double>& times, const std::string& track) {
+    std::vector<float> out;
+    out.reserve(times.size());
+    for (const double t : times) {
+        out.push_back(single(t, track, "time"));
+        if (out.size() > 1 && !(out.back() > out[out.size() - 2]))
+            throw error(fmt::format("track '{}': times {} s and {} s are one 32-bit float, as glTF stores them: expected "
+                                    "keys further apart (a lower --fps)",
+                                    track, times[out.size() - 2], t));
+    }
+    return out;
+}
+
+const char* interpolation_name(method m) {
+    return m == method::step ? "STEP" : m == method::cubicspline ? "CUBICSPLINE" : "LINEAR";
+}
+
+/// A sampler of track `t`'s rotations (or translations) into `animation`; returns its index.
+std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_track& t, bool rotation,
+                        std::map<const std::vector<double>*, std::size_t>& inputs) {
+    const std::vector<double>& times = rotation ? t.times : t.translation_times;
+    const method how = rotation ? t.how.rotation : t.how.translation;
+    // Rotation and translation on the same times share their input.
+    const std::vector<double>* same = &t.times;
+    const bool shared = !rotation && t.translation_times == t.times;
+    auto input = inputs.find(shared ? same : &times);
+    if (input == inputs.end())
+        input = inputs.emplace(shared ? same : &times, b.accessor(time_values(times, t.name), 1, true)).first;
+    std::vector<float> values;
+    const auto put = [&](std::initializer_list<double> v) {
+        for (const double x : v) values.push_back(single(x, t.name, rotation ? "rotation" : "translation"));
+    };
+    const std::size_t n = times.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        if (rotation) {
+            if (how == method::cubicspline) {
+                const spline_key& s = t.splines[i];
+                put({s.rotation_in.x, s.rotation_in.y, s.rotation_in.z, s.rotation_in.w});
+                put({s.rotation.x, s.rotation.y, s.rotation.z, s.rotation.w});
+                put({s.rotation_out.x, s.rotation_out.y, s.rotation_out.z, s.rotation_out.w});
+            } else {
+                const quat& q = t.rotations[i];
+                put({q.x, q.y, q.z, q.w});
+            }
+        } else {
+            const vec3& p = t.translations[i];
+            if (how == method::cubicspline) put({t.translation_splines[i].translation_in.x, t.translation_splines[i].translation_in.y, t.translation_splines[i].translation_in.z});
+            put({p.x, p.y, p.z});
+            if (how == method::cubicspline) put({t.translation_splines[i].translation_out.x, t.translation_splines[i].translation_out.y, t.translation_splines[i].translation_out.z});
+        }
+    }
+    gltf_json sampler = gltf_json::object();
+    sampler["input"] = input->second;
+    sampler["interpolation"] = interpolation_name(how);
+    sampler["output"] = b.accessor(values, rotation ? 4 : 3, false);
+    animation["samplers"].push_back(std::move(sampler));
+    return animation["samplers"].size() - 1;
+}
+
+gltf_json channel(std::size_t sampler, std::size_t node, const char* path) {
+    gltf_json c = gltf_json::object();
+    c["sampler"] = sampler;
+    c["target"] = gltf_json::object();
+    c["target"]["node"] = node;
+    c["target"]["path"] = path;
+    return c;
+}
+
+/// A new file: a node per track, one animation.
+gltf_json new_file(const std::vector<gltf_track>& tracks, buffer_builder& b, gltf_json& json) {
+    json["asset"] = {{"version", "2.0"}, {"generator", "keyrot"}};
+    json["scene"] = 0;
+    json["scenes"] = gltf_json::array({{{"nodes", gltf_json::array()}}});
+    json["nodes"] = gltf_json::array();
+    gltf_json animation = {{"channels", gltf_json::array()}, {"samplers", gltf_json::array()}};
+    std::map<const std::vector<double>*, std::size_t> inputs;
+    for (std::size_t i = 0; i < tracks.size(); ++i) {
+        json_quote(tracks[i].name);  // throws for a name that is not UTF-8, which JSON cannot hold
+        json["nodes"].push_back({{"name", tracks[i].name.empty() ? "track" : tracks[i].name}});
+        json["scenes"][0]["nodes"].push_back(i);
+        animation["channels"].push_back(channel(add_sampler(b, animation, tracks[i], true, inputs), i, "rotation"));
+        if (!tracks[i].translations.empty())
+            animation["channels"].push_back(channel(add_sampler(b, animation, tracks[i], false, inputs), i, "translation"));
+    }
+    return animation;
+}
+
+/// The input file with the samplers of the channels keyrot read replaced.
+void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_builder& b, gltf_json& json,
+             warnings& warn) {
+    gltf_file& file = source.file;
+    for (const auto& name : json.value("extensionsUsed", gltf_json::array()))
+        if (!name.is_string() || !renumbered_or_harmless.contains(name.get<std::string>()))
+            throw input_error(file.source, fmt::format("extensionsUsed: {} may refer to data keyrot would move: expected "
+                                                       "a file without it, or output in another format",
+                                                       excerpt(name.dump())));
+    // Replaced channels: (animation, channel) -> (track, rotation?).
+    std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, bool>> replaced;
+    for (std::size_t i = 0; i < tracks.size(); ++i) {
+        const gltf_track_origin& o = source.origins[i];
+        if (o.rotation) replaced[{o.animation, *o.rotation}] = {i, true};
+        if (o.translation) replaced[{o.animation, *o.translation}] = {i, false};
+    }
+    // The old samplers of replaced channels leave; kept ones are renumbered.
+    std::vector<bool> dropped_accessor(top_array(file, "accessors").size(), false);
+    std::set<std::size_t> animations;
+    for (const auto& [at, track] : replaced) animations.insert(at.first);
+    std::size_t kept_channels = 0;
+    for (const std::size_t a : animations) {
+        gltf_json& anim = json["animations"][a];
+        std::vector<bool> keep(anim["samplers"].size(), false);
+        for (std::size_t c = 0; c < anim["channels"].size(); ++c) {
+            if (replaced.contains({a, c})) continue;
+            const gltf_json& sampler = anim["channels"][c]["sampler"];  // (the reader checked each channel is an object)
+            if (!sampler.is_number_unsigned() || sampler.get<std::size_t>() >= keep.size())
+                throw input_error(fmt::format("{}: animations[{}].channels[{}].sampler", file.source, a, c),
+                                  fmt::format("{}: expected an index into animations[{}].samplers", excerpt(sampler.dump()), a));
+            keep[sampler.get<std::size_t>()] = true;
+            ++kept_channels;
+        }
+        gltf_json samplers = gltf_json::array();
+        std::vector<std::size_t> renumbered(keep.size(), 0);
+        for (std::size_t s = 0; s < keep.size(); ++s) {
+            if (keep[s]) {
+                renumbered[s] = samplers.size();
+                samplers.push_back(anim["samplers"][s]);
+            } else if (const gltf_json& old = anim["samplers"][s]; old.is_object()) {  // (not one no channel used)
+                for (const char* end : {"input", "output"})
+                    if (const auto ref = old.find(end); ref != old.end() && ref->is_number_unsigned() &&
+                                                        ref->get<std::size_t>() < dropped_accessor.size())
+                        dropped_accessor[ref->get<std::size_t>()] = true;
+            }
+        }
+        for (std::size_t c = 0; c < anim["channels"].size(); ++c)
+            if (!replaced.contains({a, c})) anim["channels"][c]["sampler"] = renumbered[anim["channels"][c]["sampler"].get<std::size_t>()];
+        anim["samplers"] = std::move(samplers);
+    }
+    if (kept_channels)
+        warn.once("gltf-kept", fmt::format("{} channel{} keyrot does not interpolate (weights, scale) kept as {} were",
+                                           kept_channels, kept_channels == 1 ? "" : "s", kept_channels == 1 ? "it" : "they"));
+    // An accessor still referred to stays (another sampler, a mesh may share it).
+    accessor_refs(json, [&](gltf_json& ref) {
+        if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_accessor.size()) dropped_accessor[ref.get<std::size_t>()] = false;
+    });
+    std::vector<bool> keep_accessor(dropped_accessor.size());
+    for (std::size_t i = 0; i < keep_accessor.size(); ++i) keep_accessor[i] = !dropped_accessor[i];
+    // The bufferViews only dropped accessors used leave with them.
+    std::vector<bool> dropped_view(top_array(file, "bufferViews").size(), false);
+    for (std::size_t i = 0; i < dropped_accessor.size(); ++i)
+        if (dropped_accessor[i]) {
+            gltf_json one = {{"accessors", gltf_json::array({json["accessors"][i]})}};
+            view_refs(one, [&](gltf_json& ref) {
+                if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_view.size()) dropped_view[ref.get<std::size_t>()] = true;
+            });
+        }
+    compact(json, "accessors", keep_accessor, [](gltf_json& j, auto&& f) { accessor_refs(j, f); });
+    view_refs(json, [&](gltf_json& ref) {
+        if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_view.size()) dropped_view[ref.get<std::size_t>()] = false;
+    });
+    std::vector<bool> keep_view(dropped_view.size());
+    for (std::size_t i = 0; i < keep_view.size(); ++i) keep_view[i] = !dropped_view[i];
+    // The kept views' bytes, from whichever buffer, into the one buffer of the output.
+    compact(json, "bufferViews", keep_view, [](gltf_json& j, auto&& f) { view_refs(j, f); });
+    const gltf_json views = json.contains("bufferViews") ? std::move(json["bufferViews"]) : gltf_json::array();
+    json.erase("bufferViews");
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        const std::string where = fmt::format("{}: bufferViews[{}]", file.source, v);
+        if (!views[v].is_object() || !views[v].contains("buffer")) throw input_error(where, "expected an object with a buffer");
+        const std::size_t buffer = index_into(file, views[v]["buffer"], "buffers", where);
+        const std::string& bytes = buffer_bytes(file, buffer);
+        const std::size_t offset = unsigned_member(views[v], "byteOffset", 0, where);
+        const std::size_t length = unsigned_member(views[v], "byteLength", 0, where);
+        if (offset > bytes.size() || length > bytes.size() - offset)
+            throw input_error(where, fmt::format("bytes {} to {} read past the end of buffer {}", offset, offset + length,
+                                                 buffer));
+        // At the same offset modulo 4, so that the accessors in it stay aligned.
+        gltf_json& view = json["bufferViews"][b.view(std::string_view(bytes).substr(offset, length), offset % 4)];
+        const gltf_json placed = view["byteOffset"];
+        view = views[v];
+        view["buffer"] = 0;
+        view["byteOffset"] = placed;
+    }
+    // The new samplers and channels.
+    std::map<std::size_t, std::map<const std::vector<double>*, std::size_t>> inputs;  // per animation
+    for (const auto& [at, who] : replaced) {
+        const auto [a, c] = at;
+        const auto [i, rotation] = who;
+        gltf_json& anim = json["animations"][a];
+        anim["channels"][c]["sampler"] = add_sampler(b, anim, tracks[i], rotation, inputs[a]);
+    }
+}
+
+/// Relative image URIs of the input, made relative to where the output goes.
+void move_image_uris(gltf_json& json, const std::string& from_directory, const std::optional<std::string>& target) {
+    const std::filesystem::path to = target ? std::filesystem::absolute(*target).parent_path() : std::filesystem::current_path();
+    at_path(json, {"images", "*", "uri"}, [&](gltf_json& uri) {
+        if (!uri.is_string()) return;
+        const std::string u = uri;
+        if (u.starts_with("data:") || u.find("://") != std::string::npos || u.starts_with("/")) return;
+        const auto moved = std::filesystem::absolute(std::filesystem::path(from_directory) / u).lexically_relative(to);
+        if (!moved.empty()) uri = moved.generic_string();
+    });
+}
+
+std::string glb_bytes(std::string text, std::string bin) {
+    text.append((4 - text.size() % 4) % 4, ' ');
+    bin.append((4 - bin.size() % 4) % 4, '\0');
+    std::string out;
+    const auto u32 = [&](std::size_t v) {
+        for (int b = 0; b < 4; ++b) out += static_cast<char>(v >> (8 * b) & 0xff);
+    };
+    out += "glTF";
+    u32(2);
+    u32(12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size()));
+    u32(text.size());
+    u32(0x4E4F534A);
+    out += text;
+    if (!bin.empty()) {
+        u32(bin.size());
+        u32(0x004E4942);
+        out += bin;
+    }
+    return out;
+}
+
+std::string base64(std::string_view bytes) {
+    static constexpr char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    out.reserve((bytes.size() + 2) / 3 * 4);
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        const auto byte = [&](std::size_t j) { return j < bytes.size() ? std::uint32_t{static_cast<unsigned char>(bytes[j])} : 0u; };
+        const std::uint32_t v = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
+        out += digits[v >> 18 & 63];
+        out += digits[v >> 12 & 63];
+        out += i + 1 < bytes.size() ? digits[v >> 6 & 63] : '=';
+        out += i + 2 < bytes.size() ? digits[v & 63] : '=';
+    }
+    return out;
+}
+
+}  // namespace
+
+void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, format f,
+                const std::optional<std::string>& target, std::ostream& out, warnings& warn) {
+    gltf_json json = source ? source->file.json : gltf_json::object();
+    buffer_builder b(json);
+    gltf_json buffer = gltf_json::object();
+    if (source) {
+        if (const auto& buffers = top_array(source->file, "buffers"); !buffers.empty() && buffers[0].is_object()) buffer = buffers[0];
+        try {
+            rewrite(tracks, *source, b, json, warn);
+        } catch (const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
+            throw input_error(source->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
+        }
+        move_image_uris(json, source->file.directory, target);
+    } else {
+        json["animations"] = gltf_json::array({new_file(tracks, b, json)});
+    }
+    buffer.erase("uri");
+    buffer["byteLength"] = b.bytes.size();
+    json["buffers"] = gltf_json::array({buffer});
+    if (f == format::glb) {
+        const std::string bytes = glb_bytes(json.dump(), std::move(b.bytes));
+        if (target) write_file_atomically(*target, bytes);
+        else write_to_stream(out, bytes);
+        return;
+    }
+    if (!target) {
+        json["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(b.bytes);
+        write_to_stream(out, json.dump() + "\n");
+        return;
+    }
+    // The .bin beside the .gltf: both written, then put in place (the buffer first).
+    const std::filesystem::path bin = std::filesystem::path(*target).replace_extension(".bin");
+    json["buffers"][0]["uri"] = bin.filename().string();
+    output_file bin_file(bin.string()), gltf_file_out(*target);
+    bin_file.write(b.bytes);
+    gltf_file_out.write(json.dump() + "\n");
+    bin_file.commit();
+    gltf_file_out.commit();
+}
+
+}  // namespace keyrot

@@ -1,0 +1,37 @@
+#pragma once
+// glTF 2.0 output: the tracks' rows as animation samplers, in a new file
+// (a node per track) or in place of a glTF input's own samplers, everything
+// else of that file kept.
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "io/gltf.hpp"
+#include "keyrot/track.hpp"
+
+namespace keyrot {
+
+/// One track's rows as a glTF file stores them.
+struct gltf_track {
+    std::string name;
+    track_interpolation how;  ///< slerp is written LINEAR, step STEP, cubicspline CUBICSPLINE
+    std::vector<double> times;
+    std::vector<quat> rotations;
+    std::vector<spline_key> splines;  ///< CUBICSPLINE: one per row
+    std::vector<double> translation_times;  ///< the rows that have a translation
+    std::vector<vec3> translations;
+    std::vector<spline_key> translation_splines;  ///< CUBICSPLINE translations: one per translation
+};
+
+/// Writes `tracks` as a glTF file of format `f` (gltf or glb) to `target`
+/// (a .gltf's buffer to the .bin of the same name beside it, both replaced
+/// only once both are written) or to `out` (a .gltf with its buffer as a
+/// data: URI). With `source`, the glTF input the tracks were read from
+/// (tracks[i] is its track i), that file is written with the samplers of
+/// the channels keyrot read replaced and all else kept; otherwise a new
+/// file with a node per track and one animation. Throws keyrot::error.
+void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, format f,
+                const std::optional<std::string>& target, std::ostream& out, warnings& warn);
+
+}  // namespace keyrot
