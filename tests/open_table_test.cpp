@@ -51,7 +51,7 @@ std::string through_table(format f, const std::optional<std::string>& path, cons
     warnings warn(err, "in");
     const auto table = open_table(f, path, out, info, w, warn);
     for (std::size_t t = 0; t < tracks.size(); ++t) {
-        table->begin_track("track " + std::to_string(t), tracks[t].front().translation.has_value());
+        table->begin_track("track " + std::to_string(t), tracks[t].front().translation.has_value(), track_interpolation{});
         for (const sample& s : tracks[t]) table->row(s);
     }
     table->finish();
@@ -91,7 +91,7 @@ TEST_CASE("open_table: a table never finished leaves no file, and its file is no
         std::ostringstream out, err;
         warnings warn(err, "in");
         const auto table = open_table(format::csv, path, out, table_info{}, write_options{}, warn);
-        table->begin_track("", false);
+        table->begin_track("", false, track_interpolation{});
         const auto tracks = tracks_of(2, 50000);
         for (const sample& row : tracks[1]) table->row(row);  // (track 1: no translations)
     }  // an error before finish(): the table goes

@@ -26,6 +26,24 @@ struct location {
 /// "walk.csv:14", "walk.json: tracks.hip.keys[3]", or the source alone.
 std::string where(const std::string& source, const location& at);
 
+/// A glTF CUBICSPLINE key as its spline passes it: the rotation as stored
+/// (not normalised), and the tangents, derivatives per second of the
+/// quaternion's components (w, x, y, z) and of the translation.
+struct spline_key {
+    quat rotation{0, 0, 0, 0}, rotation_in{0, 0, 0, 0}, rotation_out{0, 0, 0, 0};
+    vec3 translation_in, translation_out;
+};
+
+/// How a file says a track is interpolated (glTF's samplers): the
+/// rotation's method, and the translation's (step holds, cubicspline is
+/// Hermite, any other is linear); and how precisely it stores times.
+struct track_interpolation {
+    method rotation = method::slerp;
+    method translation = method::slerp;
+    double time_rounding = 0;  ///< as resample_options::time_rounding
+    bool operator==(const track_interpolation&) const = default;
+};
+
 /// One key exactly as read: numbers in the file's units, not yet checked
 /// beyond being finite. Quaternion values are in (w, x, y, z) order.
 struct raw_key {
@@ -35,6 +53,7 @@ struct raw_key {
     std::array<double, 16> values{};  ///< as many as `kind` needs
     std::optional<vec3> translation;
     std::string unknown;  ///< a JSON key's first field that keyrot does not read, if any
+    std::optional<spline_key> spline;  ///< glTF CUBICSPLINE keys only
 };
 
 /// Settings that describe a document (flags, overridden by its own fields).
@@ -43,6 +62,7 @@ struct key_settings {
     std::optional<euler_seq> euler;
     double key_fps = 24;
     bool strict = false;
+    std::optional<track_interpolation> interpolation = std::nullopt;  ///< a glTF track's own
 };
 
 /// What a reader knows of a track before its keys.
@@ -50,14 +70,6 @@ struct raw_track {
     std::string name;  ///< empty for a file without tracks
     location at;  ///< the JSON track, or the CSV header, for errors
     key_settings settings;
-};
-
-/// A glTF CUBICSPLINE key as its spline passes it: the rotation as stored
-/// (not normalised), and the tangents, derivatives per second of the
-/// quaternion's components (w, x, y, z) and of the translation.
-struct spline_key {
-    quat rotation{0, 0, 0, 0}, rotation_in{0, 0, 0, 0}, rotation_out{0, 0, 0, 0};
-    vec3 translation_in, translation_out;
 };
 
 struct key {
@@ -72,16 +84,6 @@ struct key {
     std::optional<std::array<double, 3>> euler;
     bool renormalised = false;  ///< input norm differed from 1 by > tol::unit_norm
     std::optional<spline_key> spline;  ///< glTF CUBICSPLINE keys only
-};
-
-/// How a file says a track is interpolated (glTF's samplers): the
-/// rotation's method, and the translation's (step holds, cubicspline is
-/// Hermite, any other is linear); and how precisely it stores times.
-struct track_interpolation {
-    method rotation = method::slerp;
-    method translation = method::slerp;
-    double time_rounding = 0;  ///< as resample_options::time_rounding
-    bool operator==(const track_interpolation&) const = default;
 };
 
 struct track {

@@ -22,7 +22,7 @@
 #include "ground/held_warnings.hpp"
 #include "ground/thread_start.hpp"
 #include "io/document.hpp"
-#include "io/gltf_write.hpp"
+#include "io/gltf.hpp"
 #include "io/open.hpp"
 #include "io/output.hpp"
 
@@ -48,12 +48,13 @@ struct document_facts {
     bool frames = false;     // some key has both: keyrot's own frames
     bool any_frame = false;  // some key has a frame
 
-    void add(const std::string& track, const std::optional<euler_seq>& euler, double key_fps, key k) {
+    /// Key `k` of track `track`, whose settings are `s`.
+    void add(const std::string& track, const key_settings& s, key k) {
         all_frames = all_frames && k.frame.has_value();
         any_time = any_time || k.has_time;
         frames = frames || (k.frame && k.has_time);
         if (tracks.empty() || tracks.back().name != track)
-            tracks.push_back({track, k, k, false, euler, key_fps, 0, std::nullopt});
+            tracks.push_back({track, k, k, false, s.euler, s.key_fps, 0, s.interpolation});
         any_frame = any_frame || k.frame.has_value();
         ++tracks.back().keys;
         tracks.back().translation = tracks.back().translation || k.translation.has_value();
@@ -69,8 +70,11 @@ document_facts facts_of(const document& doc) {
     document_facts d;
     d.named = doc.named;
     for (const track& t : doc.tracks) {
-        for (const key& k : t.keys) d.add(t.name, t.euler, t.key_fps, k);
-        d.tracks.back().interpolation = t.interpolation;
+        key_settings s;
+        s.euler = t.euler;
+        s.key_fps = t.key_fps;
+        s.interpolation = t.interpolation;
+        for (const key& k : t.keys) d.add(t.name, s, k);
     }
     return d;
 }
@@ -200,6 +204,14 @@ struct transform_plan {
     std::optional<std::string> target;  // the output file; none for standard output
 };
 
+/// How the plan's output is written, for an input of facts `d`: a glTF
+/// output of a glTF input rewrites that file.
+write_options writing_for(const transform_plan& p, const input_source& src, const document_facts& d, warnings& warn) {
+    write_options w = writing(p.flags, d.tracks.front().euler);
+    if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = read_gltf_source(*src.open(), p.in, p.reading, warn);
+    return w;
+}
+
 /// Pass 1 over a streamed input: every key validated, the facts learnt.
 /// Stops early (read_whole = true) when a track comes back after another
 /// one began, or when the reader declines the document (a JSON document
@@ -220,7 +232,7 @@ document_facts scan(const transform_plan& p, const input_source& src, warnings& 
             read_whole = true;
             return d;
         }
-        d.add(name, reader->settings().euler, reader->settings().key_fps, std::move(k));
+        d.add(name, reader->settings(), std::move(k));
     }
     read_whole = reader->declined();
     if (read_whole) return d;
@@ -272,11 +284,12 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
         if (!same_track) {
             if (!seen.tracks.empty()) p.rows->end_track();
             const bool translation = known ? known->tracks[seen.tracks.size()].translation : k.translation.has_value();
-            rows.begin_track(name, translation);
-            p.rows->begin_track(settings.euler, std::nullopt, translation, row);
+            rows.begin_track(name, translation, p.rows->written(settings.interpolation));
+            p.rows->begin_track(settings.euler, settings.interpolation, translation, row);
         }
+        if (k.spline) rows.key_spline(*k.spline);
         p.rows->add(k);
-        seen.add(name, settings.euler, settings.key_fps, std::move(k));
+        seen.add(name, settings, std::move(k));
     }
     if (reader->declined()) return std::nullopt;
     if (!seen.tracks.empty()) p.rows->end_track();
@@ -290,9 +303,12 @@ void whole_rows(const transform_plan& p, const document& doc, const document_fac
     for (std::size_t i = 0; i < doc.tracks.size(); ++i) {
         const track& t = doc.tracks[i];
         const bool translation = d.tracks[i].translation;
-        rows.begin_track(t.name, translation);
+        rows.begin_track(t.name, translation, p.rows->written(t.interpolation));
         p.rows->begin_track(t.euler, t.interpolation, translation, row);
-        for (const key& k : t.keys) p.rows->add(k);
+        for (const key& k : t.keys) {
+            if (k.spline) rows.key_spline(*k.spline);
+            p.rows->add(k);
+        }
         p.rows->end_track();
     }
 }
@@ -313,12 +329,10 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
             std::string name;
             raw_key raw;
             if (!reader->next(name, raw)) return false;
-            guess.add(name, reader->settings().euler, reader->settings().key_fps,
-                      make_key(raw, reader->settings(), attempt));
+            guess.add(name, reader->settings(), make_key(raw, reader->settings(), attempt));
             guess.named = reader->named();
         }
-        const auto table = open_table(p.out, p.target, out, p.rows->table(guess),
-                                      writing(p.flags, guess.tracks.front().euler), attempt);
+        const auto table = open_table(p.out, p.target, out, p.rows->table(guess), writing_for(p, src, guess, attempt), attempt);
         const std::optional<document_facts> seen = stream_rows(p, src, nullptr, *table, attempt);
         if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
         p.rows->check(*seen, src.source());
@@ -329,57 +343,24 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
     });
 }
 
-/// resample or convert into a glTF file, which is written whole: every
-/// track's rows gathered as glTF stores them. A glTF input is rewritten
-/// with its samplers replaced; any other input makes a new file.
-void transform_to_gltf(const transform_plan& p, const input_source& src, std::ostream& out, warnings& warn) {
-    const document doc = read_document(src, p.in, p.reading, warn, json_reading::streamed_first);
-    const document_facts d = facts_of(doc);
-    p.rows->check(d, src.source());
-    std::vector<gltf_track> tracks;
-    for (std::size_t i = 0; i < doc.tracks.size(); ++i) {
-        const track& t = doc.tracks[i];
-        gltf_track g{t.name, p.rows->written(t.interpolation), {}, {}, {}, {}, {}, {}};
-        const bool splines = g.how.rotation == method::cubicspline || g.how.translation == method::cubicspline;
-        // Only convert writes CUBICSPLINE (a row per key, in order): row n is key n, with its spline.
-        p.rows->begin_track(t.euler, t.interpolation, d.tracks[i].translation, [&](const sample& s) {
-            const spline_key spline = splines ? *t.keys[g.times.size()].spline : spline_key{};
-            g.times.push_back(s.time);
-            g.rotations.push_back(s.rotation);
-            if (splines) g.splines.push_back(spline);
-            if (!s.translation) return;
-            g.translation_times.push_back(s.time);
-            g.translations.push_back(*s.translation);
-            if (splines) g.translation_splines.push_back(spline);
-        });
-        for (const key& k : t.keys) p.rows->add(k);
-        p.rows->end_track();
-        tracks.push_back(std::move(g));
-    }
-    write_gltf(tracks, doc.gltf.get(), p.out, p.target, out, warn);
-}
-
 /// resample or convert one input into the plan's file or `out`.
 void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
     warnings warn(err, src.source());
-    if (is_gltf(p.out)) return transform_to_gltf(p, src, out, warn);
-    const bool streams = !is_gltf(p.in);  // a glTF file's tracks are read whole
-    if (streams && p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn)) return;
+    if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn)) return;
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or
     // in a pipe or device named by -o).
     bool read_whole = false;
     document_facts d;
     std::optional<document> whole;
-    if (!streams) read_whole = true;
-    else if (p.in == format::json) read_whole = !scan_json(p, src, d, warn);
+    if (p.in == format::json) read_whole = !scan_json(p, src, d, warn);
     else d = scan(p, src, warn, read_whole);
     if (read_whole) {
         whole = read_document(src, p.in, p.reading, warn, json_reading::whole);
         d = facts_of(*whole);
     }
     p.rows->check(d, src.source());
-    const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing(p.flags, d.tracks.front().euler), warn);
+    const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing_for(p, src, d, warn), warn);
     if (whole) whole_rows(p, *whole, d, *table);
     else if (!stream_rows(p, src, &d, *table, warn))  // pass 1 took it: the document is not what it was
         throw error(changed_while_read(src.source()));

@@ -73,6 +73,7 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     out.at = k.at;
     out.given_as = k.kind;
     out.translation = k.translation;
+    out.spline = k.spline;
     // A row with both is a frame of keyrot's own output, at whatever rate it
     // was made: its time times it, its frame is kept as a label (compare
     // matches by it).
@@ -123,7 +124,9 @@ void check_order(const key& previous, const key& next, const std::string& source
 }
 
 track_builder::track_builder(std::string name, location at, key_settings settings)
-    : at_(std::move(at)), settings_(std::move(settings)), track_{std::move(name), settings_.euler, {}, settings_.key_fps} {}
+    : at_(std::move(at)),
+      settings_(std::move(settings)),
+      track_{std::move(name), settings_.euler, {}, settings_.key_fps, settings_.interpolation} {}
 
 void track_builder::add(const raw_key& raw, warnings& warn) {
     key k = make_key(raw, settings_, warn);

@@ -5,7 +5,6 @@
 #include <optional>
 
 #include "ground/held_warnings.hpp"
-#include "io/gltf.hpp"
 #include "io/io_json.hpp"
 #include "io/open.hpp"
 
@@ -77,7 +76,6 @@ std::optional<document> read_streamed_json(const input_source& src, const read_o
 document read_document(std::istream& in, format f, const read_options& ro, warnings& warn) {
     document result{ro.source, f, false, {}};
     try {
-        if (is_gltf(f)) return read_gltf(in, f, ro, warn);
         if (f != format::json) {
             read_keys(result, in, ro, warn);
             return result;

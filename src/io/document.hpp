@@ -3,7 +3,6 @@
 // resample and convert read when tracks interleave or a JSON document is not
 // streamed, and what the tests read.
 #include <istream>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,14 +12,11 @@
 
 namespace keyrot {
 
-struct gltf_source;
-
 struct document {
     std::string source;  ///< for messages
     format fmt = format::csv;
     bool named = false;  ///< the input names its tracks
     std::vector<track> tracks;  ///< in order of first appearance
-    std::shared_ptr<gltf_source> gltf = nullptr;  ///< a glTF input's file, which a glTF output rewrites
 };
 
 /// Every track of `in`, keys grouped by track name. Each key is made as it

@@ -3,12 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <set>
 
 #include "io/gltf_file.hpp"
 #include "keyrot/interpolate.hpp"
+#include "keyrot/tolerances.hpp"
 
 namespace keyrot {
 namespace {
@@ -29,9 +31,8 @@ struct channel_curve {
         return values.data() + (key * per_key + slot) * width;
     }
     std::array<double, 4> get(std::size_t key, int part) const {
-        std::array<double, 4> v{};
-        std::copy_n(element(key, part), width, v.begin());
-        return v;
+        const double* e = element(key, part);
+        return {e[0], e[1], e[2], width == 4 ? e[3] : 0};
     }
 };
 
@@ -66,7 +67,11 @@ channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std:
     if (c.how == method::cubicspline && c.keys() < 2)
         throw input_error(at, "CUBICSPLINE with one key: expected at least two");
     if (width == 4)  // glTF stores x, y, z, w; keyrot's order is w, x, y, z
-        for (std::size_t i = 0; i < c.values.size(); i += 4) std::rotate(&c.values[i], &c.values[i + 3], &c.values[i + 4]);
+        for (std::size_t i = 0; i < c.values.size(); i += 4) {
+            const double w = c.values[i + 3];
+            c.values[i + 3] = c.values[i + 2], c.values[i + 2] = c.values[i + 1], c.values[i + 1] = c.values[i];
+            c.values[i] = w;
+        }
     return c;
 }
 
@@ -98,12 +103,6 @@ std::pair<std::array<double, 4>, std::array<double, 4>> evaluate(const channel_c
     const quat q = slerp(qa, qb, h);
     return {{q.w, q.x, q.y, q.z}, {}};
 }
-
-/// A node's channels in one animation.
-struct node_channels {
-    gltf_track_origin origin;
-    std::optional<channel_curve> rotation, translation;
-};
 
 std::string node_name(const gltf_file& file, std::size_t node) {
     const gltf_json& n = top_array(file, "nodes")[node];
@@ -155,9 +154,15 @@ std::string animation_name(const gltf_file& file, std::size_t a) {
     return fmt::format("animation{}", a);
 }
 
+/// A track to be: a node's channels in one animation, and its name.
+struct node_track {
+    gltf_track_origin origin;
+    std::string name;
+};
+
 /// Animation `a`'s rotation and translation channels, by node in the order
 /// of their first channel. Other channels are noted and left out.
-std::vector<node_channels> channels_of(gltf_file& file, std::size_t a, warnings& warn) {
+std::vector<node_track> channels_of(const gltf_file& file, std::size_t a, warnings& warn) {
     const gltf_json& anim = top_array(file, "animations")[a];
     const std::string path = fmt::format("animations[{}]", a);
     const std::string at = fmt::format("{}: {}", file.source, path);
@@ -165,7 +170,7 @@ std::vector<node_channels> channels_of(gltf_file& file, std::size_t a, warnings&
         !anim["samplers"].is_array())
         throw input_error(at, "expected an object with channels and samplers");
     const gltf_json &channels = anim["channels"], &samplers = anim["samplers"];
-    std::vector<node_channels> nodes;
+    std::vector<node_track> nodes;
     std::map<std::size_t, std::size_t> index;  // node -> its entry
     for (std::size_t c = 0; c < channels.size(); ++c) {
         const gltf_json& ch = channels[c];
@@ -186,55 +191,115 @@ std::vector<node_channels> channels_of(gltf_file& file, std::size_t a, warnings&
                                                   excerpt(what.empty() ? "unnamed" : what), path, c));
             continue;
         }
-        if (!samplers.is_array() || !ch["sampler"].is_number_unsigned() || ch["sampler"].get<std::size_t>() >= samplers.size())
-            throw input_error(here + ".sampler", fmt::format("{}: expected an index into {}.samplers", excerpt(ch["sampler"].dump()), path));
-        const std::size_t s = ch["sampler"];
+        if (!ch["sampler"].is_number_unsigned() || ch["sampler"].get<std::size_t>() >= samplers.size())
+            throw input_error(here + ".sampler",
+                              fmt::format("{}: expected an index into {}.samplers", excerpt(ch["sampler"].dump()), path));
         const auto [it, added] = index.emplace(node, nodes.size());
-        if (added) nodes.push_back({{a, node, std::nullopt, std::nullopt}, std::nullopt, std::nullopt});
-        node_channels& n = nodes[it->second];
-        auto& slot = what == "rotation" ? n.rotation : n.translation;
+        if (added) nodes.push_back({{a, node, std::nullopt, std::nullopt}, {}});
+        auto& slot = what == "rotation" ? nodes[it->second].origin.rotation : nodes[it->second].origin.translation;
         if (slot) throw input_error(here, fmt::format("node {}'s {} is animated twice in one animation: expected once", node, what));
-        (what == "rotation" ? n.origin.rotation : n.origin.translation) = c;
-        slot = read_sampler(file, samplers[s], fmt::format("{}.samplers[{}]", path, s), what == "rotation" ? 4 : 3);
+        slot = c;
     }
     return nodes;
 }
 
-/// One node's channels as one track's keys.
-track track_of(const gltf_file& file, const node_channels& n, std::string name, const read_options& ro, warnings& warn) {
-    std::vector<double> times;
-    for (const auto& c : {n.rotation, n.translation})
-        if (c) times.insert(times.end(), c->times.begin(), c->times.end());
-    std::sort(times.begin(), times.end());
-    times.erase(std::unique(times.begin(), times.end()), times.end());
-    const bool spline = (n.rotation && n.rotation->how == method::cubicspline) ||
-                        (n.translation && n.translation->how == method::cubicspline);
-    const quat rest = n.rotation ? quat{} : rest_rotation(file, n.origin.node);
-    track_builder builder(name, {}, ro.settings);
-    std::vector<std::optional<spline_key>> splines;
-    for (const double t : times) {
+/// Every track of the file (or of the one animation ro.animation names), named.
+std::vector<node_track> tracks_of(const gltf_file& file, const read_options& ro, warnings& warn) {
+    const std::vector<std::size_t> animations = chosen_animations(file, ro.animation);
+    std::vector<node_track> tracks;
+    std::set<std::string> names;
+    for (const std::size_t a : animations) {
+        for (node_track& n : channels_of(file, a, warn)) {
+            n.name = node_name(file, n.origin.node);
+            if (animations.size() > 1) n.name = animation_name(file, a) + "/" + n.name;
+            if (names.contains(n.name)) n.name += fmt::format("#node{}", n.origin.node);  // two nodes of one name
+            check_track_name(n.name, fmt::format("{}: nodes[{}].name", ro.source, n.origin.node));
+            names.insert(n.name);
+            tracks.push_back(std::move(n));
+        }
+    }
+    if (tracks.empty())
+        throw input_error(ro.source, "no rotation or translation channels: expected an animation of a node's rotation "
+                                     "or translation");
+    return tracks;
+}
+
+gltf_file load(std::istream& in, format f, const read_options& ro) {
+    const std::filesystem::path directory = std::filesystem::path(ro.source).parent_path();
+    return load_gltf(in, f, ro.source, directory.empty() ? "." : directory.string(), ro.max_bytes);
+}
+
+/// A glTF file's keys, track after track: each node's samplers are read
+/// when its track's turn comes, so that one track's keys are held at a time.
+class gltf_keys final : public key_reader {
+public:
+    gltf_keys(std::istream& in, format f, const read_options& ro, warnings& warn)
+        : file_(load(in, f, ro)), tracks_(tracks_of(file_, ro, warn)), flags_(ro.settings) {}
+
+    bool next(std::string& track, raw_key& k) override {
+        while (key_ == times_.size()) {
+            if (next_track_ == tracks_.size()) return false;
+            begin(next_track_++);
+        }
+        track = tracks_[next_track_ - 1].name;
+        k = key_at(key_++);
+        return true;
+    }
+    bool named() const override { return true; }
+    location start() const override { return {}; }
+    const key_settings& settings() const override { return settings_; }
+
+private:
+    /// Track i's channels read, and their times merged.
+    void begin(std::size_t i) {
+        const gltf_track_origin& o = tracks_[i].origin;
+        const gltf_json& anim = top_array(file_, "animations")[o.animation];
+        const auto read = [&](std::optional<std::size_t> channel, std::size_t width) -> std::optional<channel_curve> {
+            if (!channel) return std::nullopt;
+            const std::size_t s = anim["channels"][*channel]["sampler"];
+            return read_sampler(file_, anim["samplers"][s], fmt::format("animations[{}].samplers[{}]", o.animation, s), width);
+        };
+        rotation_ = read(o.rotation, 4);
+        translation_ = read(o.translation, 3);
+        times_.clear();
+        for (const auto& c : {rotation_, translation_})
+            if (c) times_.insert(times_.end(), c->times.begin(), c->times.end());
+        std::sort(times_.begin(), times_.end());
+        times_.erase(std::unique(times_.begin(), times_.end()), times_.end());
+        spline_ = (rotation_ && rotation_->how == method::cubicspline) ||
+                  (translation_ && translation_->how == method::cubicspline);
+        rest_ = rotation_ ? quat{} : rest_rotation(file_, o.node);
+        node_ = o.node;
+        settings_ = flags_;
+        settings_.interpolation = track_interpolation{rotation_ ? rotation_->how : method::step,
+                                                      translation_ ? translation_->how : method::slerp, 0x1p-24};
+        key_ = 0;
+    }
+
+    /// Key j of the current track: each channel's key there, or its curve's value.
+    raw_key key_at(std::size_t j) const {
+        const double t = times_[j];
         raw_key raw;
         raw.time = t;
         raw.kind = rep::quat;
         spline_key s{};
-        if (n.rotation) {
-            const auto key = std::lower_bound(n.rotation->times.begin(), n.rotation->times.end(), t);
-            const bool keyed = key != n.rotation->times.end() && *key == t;
-            const std::size_t i = static_cast<std::size_t>(key - n.rotation->times.begin());
-            raw.at.path = keyed ? fmt::format("{}.output[{}]", n.rotation->path, i) : fmt::format("{}.input", n.translation->path);
+        if (rotation_) {
+            const auto key = std::lower_bound(rotation_->times.begin(), rotation_->times.end(), t);
+            const bool keyed = key != rotation_->times.end() && *key == t;
+            const std::size_t i = static_cast<std::size_t>(key - rotation_->times.begin());
             std::array<double, 4> v{};
             if (keyed) {
-                v = n.rotation->get(i, 0);
-                if (n.rotation->how == method::cubicspline) {
+                v = rotation_->get(i, 0);
+                if (rotation_->how == method::cubicspline) {
                     // The first key's in-tangent and the last's out-tangent do nothing in glTF; zero, they
                     // keep the rotation held where the translation's keys reach beyond it.
-                    const bool held_before = i == 0 && times.front() < t, held_after = i + 1 == n.rotation->keys() && times.back() > t;
-                    const auto in = held_before ? std::array<double, 4>{} : n.rotation->get(i, -1);
-                    const auto out = held_after ? std::array<double, 4>{} : n.rotation->get(i, 1);
+                    const bool held_before = i == 0 && times_.front() < t, held_after = i + 1 == rotation_->keys() && times_.back() > t;
+                    const auto in = held_before ? std::array<double, 4>{} : rotation_->get(i, -1);
+                    const auto out = held_after ? std::array<double, 4>{} : rotation_->get(i, 1);
                     s.rotation_in = {in[0], in[1], in[2], in[3]}, s.rotation_out = {out[0], out[1], out[2], out[3]};
                 }
             } else {
-                const auto [value, slope] = evaluate(*n.rotation, t);
+                const auto [value, slope] = evaluate(*rotation_, t);
                 v = value;
                 s.rotation_in = s.rotation_out = {slope[0], slope[1], slope[2], slope[3]};
             }
@@ -242,60 +307,53 @@ track track_of(const gltf_file& file, const node_channels& n, std::string name, 
             // A value the curve passes between keys is not unit (a spline's, at least): it counts as given normalised.
             const quat q = keyed || !(norm(s.rotation) > 0) ? s.rotation : normalized(s.rotation);
             raw.values = {q.w, q.x, q.y, q.z};
+            // Where make_key may say something of the key (zero, or renormalised): formatted only then.
+            if (std::fabs(norm(q) - 1) > tol::unit_norm)
+                raw.at.path = keyed ? fmt::format("{}.output[{}]", rotation_->path, i) : fmt::format("{}.input", translation_->path);
         } else {
-            raw.at.path = fmt::format("nodes[{}].rotation", n.origin.node);
-            raw.values = {rest.w, rest.x, rest.y, rest.z};
-            s.rotation = rest;
+            if (std::fabs(norm(rest_) - 1) > tol::unit_norm) raw.at.path = fmt::format("nodes[{}].rotation", node_);
+            raw.values = {rest_.w, rest_.x, rest_.y, rest_.z};
+            s.rotation = rest_;
         }
-        if (n.translation && t >= n.translation->times.front() && t <= n.translation->times.back()) {
-            const auto key = std::lower_bound(n.translation->times.begin(), n.translation->times.end(), t);
-            const std::size_t i = static_cast<std::size_t>(key - n.translation->times.begin());
+        if (translation_ && t >= translation_->times.front() && t <= translation_->times.back()) {
+            const auto key = std::lower_bound(translation_->times.begin(), translation_->times.end(), t);
+            const std::size_t i = static_cast<std::size_t>(key - translation_->times.begin());
             std::array<double, 4> v{}, in{}, out{};
             if (*key == t) {
-                v = n.translation->get(i, 0);
-                if (n.translation->how == method::cubicspline) in = n.translation->get(i, -1), out = n.translation->get(i, 1);
+                v = translation_->get(i, 0);
+                if (translation_->how == method::cubicspline) in = translation_->get(i, -1), out = translation_->get(i, 1);
             } else {
-                std::tie(v, in) = evaluate(*n.translation, t);
+                std::tie(v, in) = evaluate(*translation_, t);
                 out = in;
             }
             raw.translation = vec3{v[0], v[1], v[2]};
             s.translation_in = {in[0], in[1], in[2]}, s.translation_out = {out[0], out[1], out[2]};
         }
-        builder.add(raw, warn);
-        splines.push_back(spline ? std::optional(s) : std::nullopt);
+        if (spline_) raw.spline = s;
+        return raw;
     }
-    track result = std::move(builder).finish(warn);
-    for (std::size_t i = 0; i < result.keys.size(); ++i) result.keys[i].spline = splines[i];
-    result.interpolation = track_interpolation{n.rotation ? n.rotation->how : method::step,
-                                               n.translation ? n.translation->how : method::slerp, 0x1p-24};
-    return result;
-}
+
+    gltf_file file_;
+    std::vector<node_track> tracks_;
+    key_settings flags_, settings_;
+    std::size_t next_track_ = 0, key_ = 0, node_ = 0;
+    std::optional<channel_curve> rotation_, translation_;
+    std::vector<double> times_;
+    bool spline_ = false;
+    quat rest_;
+};
 
 }  // namespace
 
-document read_gltf(std::istream& in, format f, const read_options& ro, warnings& warn) {
-    const std::filesystem::path directory = std::filesystem::path(ro.source).parent_path();
-    gltf_file file = load_gltf(in, f, ro.source, directory.empty() ? "." : directory.string(), ro.max_bytes);
-    const std::vector<std::size_t> animations = chosen_animations(file, ro.animation);
+std::unique_ptr<key_reader> make_gltf_reader(std::istream& in, format f, const read_options& ro, warnings& warn) {
+    return std::make_unique<gltf_keys>(in, f, ro, warn);
+}
+
+std::shared_ptr<gltf_source> read_gltf_source(std::istream& in, format f, const read_options& ro, warnings& warn) {
     auto source = std::make_shared<gltf_source>();
-    document doc{ro.source, f, true, {}, source};
-    std::set<std::string> names;
-    for (const std::size_t a : animations) {
-        for (const node_channels& n : channels_of(file, a, warn)) {
-            std::string name = node_name(file, n.origin.node);
-            if (animations.size() > 1) name = animation_name(file, a) + "/" + name;
-            if (names.contains(name)) name += fmt::format("#node{}", n.origin.node);  // two nodes of one name
-            check_track_name(name, fmt::format("{}: nodes[{}].name", ro.source, n.origin.node));
-            names.insert(name);
-            doc.tracks.push_back(track_of(file, n, name, ro, warn));
-            source->origins.push_back(n.origin);
-        }
-    }
-    if (doc.tracks.empty())
-        throw input_error(ro.source, "no rotation or translation channels: expected an animation of a node's rotation "
-                                     "or translation");
-    source->file = std::move(file);
-    return doc;
+    source->file = load(in, f, ro);
+    for (const node_track& n : tracks_of(source->file, ro, warn)) source->origins.push_back(n.origin);
+    return source;
 }
 
 }  // namespace keyrot

@@ -3,9 +3,9 @@
 // animation), its rotation and translation channels merged on one list of
 // key times, interpolated as their samplers say.
 #include <istream>
+#include <memory>
 #include <string>
 
-#include "io/document.hpp"
 #include "io/gltf_file.hpp"
 #include "io/io.hpp"
 
@@ -25,14 +25,20 @@ struct gltf_source {
     std::vector<gltf_track_origin> origins;
 };
 
-/// The animations of a glTF file (`f`: gltf or glb; relative buffer URIs
-/// from the directory of ro.source), or the one ro.animation names. A track is named after
-/// its node ("node<i>" when unnamed), prefixed "<animation>/" when several
-/// animations are read. Where a node's rotation and translation are keyed
-/// at different times, each channel gets a key at the other's times too,
-/// its value on its own curve there (so the curve is the same). Throws
+/// The keys of a glTF file (`f`: gltf or glb; relative buffer URIs from the
+/// directory of ro.source), track after track: every animation's, or the
+/// one ro.animation names. A track is a node's rotation and translation
+/// channels in one animation, named after the node ("node<i>" when
+/// unnamed), prefixed "<animation>/" when several animations are read.
+/// Where the channels are keyed at different times, each gets a key at the
+/// other's times too, its value on its own curve there (so the curve is the
+/// same). A track's settings() state its samplers' interpolation. Throws
 /// input_error naming the JSON path: "walk.glb: animations[0].samplers[2]
-/// .output: accessor 14 ...". The document keeps the file (document::gltf).
-document read_gltf(std::istream& in, format f, const read_options& ro, warnings& warn);
+/// .output: accessor 14 ...".
+std::unique_ptr<key_reader> make_gltf_reader(std::istream& in, format f, const read_options& ro, warnings& warn);
+
+/// The file, and the origin of each track make_gltf_reader gives, for a
+/// glTF output that rewrites it.
+std::shared_ptr<gltf_source> read_gltf_source(std::istream& in, format f, const read_options& ro, warnings& warn);
 
 }  // namespace keyrot

@@ -127,7 +127,7 @@ std::optional<std::string> base64_decoded(std::string_view text) {
 
 }  // namespace
 
-const std::string& buffer_bytes(gltf_file& file, std::size_t i) {
+std::string_view buffer_bytes(gltf_file& file, std::size_t i) {
     if (file.buffers.size() <= i) file.buffers.resize(i + 1);
     if (file.buffers[i]) return *file.buffers[i];
     const gltf_json& b = top_array(file, "buffers")[i];
@@ -138,7 +138,10 @@ const std::string& buffer_bytes(gltf_file& file, std::size_t i) {
     std::string bytes;
     if (!b.contains("uri")) {
         if (i != 0 || !file.bin) throw input_error(at, "no uri, and the file has no GLB BIN chunk: expected one of them");
-        bytes = *file.bin;
+        const std::string_view chunk = std::string_view(file.glb).substr(file.bin->first, file.bin->second);
+        if (chunk.size() < length)
+            throw input_error(at, fmt::format("holds {} bytes: expected byteLength {}", chunk.size(), length));
+        return chunk;  // where it is
     } else if (!b["uri"].is_string()) {
         throw input_error(at, "uri: expected a string");
     } else if (const std::string uri = b["uri"]; uri.starts_with("data:")) {
@@ -223,13 +226,13 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
     const std::string here = fmt::format("{}: bufferViews[{}]", file.source, v);
     if (!bv.is_object() || !bv.contains("buffer")) throw input_error(here, "expected an object with a buffer");
     const std::size_t b = index_into(file, bv["buffer"], "buffers", here);
-    const std::string& bytes = buffer_bytes(file, b);
+    const std::string_view bytes = buffer_bytes(file, b);
     const std::size_t offset = unsigned_member(bv, "byteOffset", 0, here);
     const std::size_t length = unsigned_member(bv, "byteLength", 0, here);
     if (offset > bytes.size() || length > bytes.size() - offset)
         throw input_error(here, fmt::format("bytes {} to {} read past the end of buffer {} ({} bytes)", offset,
                                             offset + length, b, bytes.size()));
-    return {std::string_view(bytes).substr(offset, length), unsigned_member(bv, "byteStride", 0, here)};
+    return {bytes.substr(offset, length), unsigned_member(bv, "byteStride", 0, here)};
 }
 
 }  // namespace
@@ -266,23 +269,35 @@ std::size_t index_into(const gltf_file& file, const gltf_json& value, const char
 
 gltf_file load_gltf(std::istream& in, format f, const std::string& source, const std::string& directory,
                     std::size_t max_bytes) {
-    gltf_file file{source, directory, max_bytes, {}, std::nullopt, {}};
+    gltf_file file{source, directory, max_bytes, {}, {}, std::nullopt, {}};
     std::string bytes;
-    for (char chunk[1 << 16]; in.read(chunk, sizeof chunk) || in.gcount() > 0;) {
-        if (bytes.size() + static_cast<std::size_t>(in.gcount()) > max_bytes)
-            throw input_error(source, fmt::format("more than {} bytes: expected a smaller file (--max-bytes N raises "
-                                                  "the limit)",
-                                                  max_bytes));
-        bytes.append(chunk, static_cast<std::size_t>(in.gcount()));
+    // In one piece where the stream knows its size (a file), else a piece at a time.
+    in.seekg(0, std::ios::end);
+    if (const std::streamoff size = in.tellg(); in && size >= 0) {
+        if (static_cast<std::size_t>(size) > max_bytes) bytes.resize(max_bytes + 1);
+        else bytes.resize(static_cast<std::size_t>(size));
+        in.seekg(0);
+        in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        bytes.resize(static_cast<std::size_t>(in.gcount()));
+    } else {
+        in.clear();
+        in.seekg(0);
+        in.clear();
+        for (char chunk[1 << 16]; bytes.size() <= max_bytes && (in.read(chunk, sizeof chunk) || in.gcount() > 0);)
+            bytes.append(chunk, static_cast<std::size_t>(in.gcount()));
     }
+    if (bytes.size() > max_bytes)
+        throw input_error(source, fmt::format("more than {} bytes: expected a smaller file (--max-bytes N raises the limit)",
+                                              max_bytes));
     std::string_view json = bytes;
     if (f == format::glb) {
         const auto [text, bin] = glb_chunks(bytes, source);
         json = text;
-        if (bin) file.bin = std::string(*bin);
+        if (bin) file.bin = std::pair(static_cast<std::size_t>(bin->data() - bytes.data()), bin->size());
     }
     file.json = parse_json_text(json, source);
     check_header(file.json, source);
+    if (f == format::glb) file.glb = std::move(bytes);
     return file;
 }
 

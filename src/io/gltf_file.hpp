@@ -21,8 +21,9 @@ struct gltf_file {
     std::string directory;  ///< where relative buffer URIs point: the file's, "." for standard input
     std::size_t max_bytes = default_max_bytes;  ///< the most a buffer file may hold
     gltf_json json;
-    std::optional<std::string> bin;                  ///< a .glb's BIN chunk
-    std::vector<std::optional<std::string>> buffers;  ///< each as it is first read
+    std::string glb;  ///< a .glb as read, its BIN chunk in place
+    std::optional<std::pair<std::size_t, std::size_t>> bin;  ///< the BIN chunk's offset and size in `glb`
+    std::vector<std::optional<std::string>> buffers;  ///< the others' bytes, each as it is first read
 };
 
 /// The file's JSON, and a .glb's BIN chunk (`f`: gltf or glb). Checks the
@@ -50,7 +51,7 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
 
 /// Buffer `i`'s bytes (the BIN chunk, a data: URI's, a file's), read on
 /// first use. Precondition: i indexes buffers.
-const std::string& buffer_bytes(gltf_file& file, std::size_t i);
+std::string_view buffer_bytes(gltf_file& file, std::size_t i);
 
 /// The array `name` of the file's JSON ("nodes"), empty when there is none.
 const gltf_json& top_array(const gltf_file& file, const char* name);

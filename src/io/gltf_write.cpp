@@ -303,14 +303,14 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
         const std::string where = fmt::format("{}: bufferViews[{}]", file.source, v);
         if (!views[v].is_object() || !views[v].contains("buffer")) throw input_error(where, "expected an object with a buffer");
         const std::size_t buffer = index_into(file, views[v]["buffer"], "buffers", where);
-        const std::string& bytes = buffer_bytes(file, buffer);
+        const std::string_view bytes = buffer_bytes(file, buffer);
         const std::size_t offset = unsigned_member(views[v], "byteOffset", 0, where);
         const std::size_t length = unsigned_member(views[v], "byteLength", 0, where);
         if (offset > bytes.size() || length > bytes.size() - offset)
             throw input_error(where, fmt::format("bytes {} to {} read past the end of buffer {}", offset, offset + length,
                                                  buffer));
         // At the same offset modulo 4, so that the accessors in it stay aligned.
-        gltf_json& view = json["bufferViews"][b.view(std::string_view(bytes).substr(offset, length), offset % 4)];
+        gltf_json& view = json["bufferViews"][b.view(bytes.substr(offset, length), offset % 4)];
         const gltf_json placed = view["byteOffset"];
         view = views[v];
         view["buffer"] = 0;
@@ -374,7 +374,44 @@ std::string base64(std::string_view bytes) {
     return out;
 }
 
+class gltf_table final : public table_output {
+public:
+    gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
+               std::shared_ptr<gltf_source> source, warnings& warn)
+        : f_(f), target_(target), out_(out), source_(std::move(source)), warn_(warn) {}
+    void begin_track(const std::string& name, bool, const track_interpolation& written) override {
+        tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
+    }
+    void key_spline(const spline_key& s) override { spline_ = s; }
+    void row(const sample& s) override {
+        gltf_track& t = tracks_.back();
+        const bool splines = t.how.rotation == method::cubicspline || t.how.translation == method::cubicspline;
+        t.times.push_back(s.time);
+        t.rotations.push_back(s.rotation);
+        if (splines) t.splines.push_back(spline_);
+        if (!s.translation) return;
+        t.translation_times.push_back(s.time);
+        t.translations.push_back(*s.translation);
+        if (splines) t.translation_splines.push_back(spline_);
+    }
+    void finish() override { write_gltf(tracks_, source_.get(), f_, target_, out_, warn_); }
+
+private:
+    format f_;
+    std::optional<std::string> target_;
+    std::ostream& out_;
+    std::shared_ptr<gltf_source> source_;
+    warnings& warn_;
+    std::vector<gltf_track> tracks_;
+    spline_key spline_;
+};
+
 }  // namespace
+
+std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
+                                              std::shared_ptr<gltf_source> source, warnings& warn) {
+    return std::make_unique<gltf_table>(f, target, out, std::move(source), warn);
+}
 
 void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, format f,
                 const std::optional<std::string>& target, std::ostream& out, warnings& warn) {

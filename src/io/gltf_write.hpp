@@ -2,6 +2,7 @@
 // glTF 2.0 output: the tracks' rows as animation samplers, in a new file
 // (a node per track) or in place of a glTF input's own samplers, everything
 // else of that file kept.
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -33,5 +34,10 @@ struct gltf_track {
 /// file with a node per track and one animation. Throws keyrot::error.
 void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, format f,
                 const std::optional<std::string>& target, std::ostream& out, warnings& warn);
+
+/// The rows of the tracks gathered as gltf_tracks (32-bit floats are what
+/// glTF keeps of them), written by write_gltf at finish().
+std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
+                                              std::shared_ptr<gltf_source> source, warnings& warn);
 
 }  // namespace keyrot

@@ -3,6 +3,7 @@
 // quaternion order, the CSV columns of each representation, the values
 // written for a rotation, and how numbers are printed.
 #include <array>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -12,6 +13,8 @@
 #include "keyrot/quat.hpp"
 
 namespace keyrot {
+
+struct gltf_source;
 
 /// CSV columns of a representation's rotation, in output order:
 /// rotation_columns(rep::axis_angle, ...) = {"ax", "ay", "az", "angle"}.
@@ -28,6 +31,8 @@ struct write_options {
     angle_unit angles = angle_unit::degrees;
     quat_order order = quat_order::wxyz;
     std::optional<int> precision;  ///< digits after the point; none = shortest round trip
+    /// glTF output: the glTF input it rewrites (none: a new file).
+    std::shared_ptr<gltf_source> gltf = nullptr;
 };
 
 /// A rotation's values in column order, angles in the output unit.

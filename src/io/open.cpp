@@ -1,6 +1,8 @@
 #include "io/open.hpp"
 
 #include "io/fast/json_stream.hpp"
+#include "io/gltf.hpp"
+#include "io/gltf_write.hpp"
 #include "io/fast/read_ahead.hpp"
 #include "io/fast/row_pipeline.hpp"
 #include "io/io_csv.hpp"
@@ -10,6 +12,7 @@ namespace keyrot {
 
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn,
                                             std::function<bool()> parse_ahead) {
+    if (is_gltf(f)) return make_gltf_reader(in, f, opts, warn);
     std::unique_ptr<line_key_reader> reader = f == format::json     ? make_json_reader(in, opts, warn)
                                               : f == format::ndjson ? make_ndjson_reader(in, opts, warn)
                                                                     : make_csv_reader(in, opts, warn);
@@ -32,7 +35,9 @@ public:
                 const write_options& opts, warnings& warn)
         : sink_(path, out), writer_(make_writer(f, sink_.text(), info, opts, warn)),
           rows_(*writer_, sink_, detail::formatting_threads()) {}
-    void begin_track(const std::string& name, bool has_translation) override { rows_.begin_track(name, has_translation); }
+    void begin_track(const std::string& name, bool has_translation, const track_interpolation&) override {
+        rows_.begin_track(name, has_translation);
+    }
     void row(const sample& s) override { rows_.row(s); }
     void finish() override {
         rows_.finish();
@@ -50,6 +55,7 @@ private:
 
 std::unique_ptr<table_output> open_table(format f, const std::optional<std::string>& path, std::ostream& out,
                                          const table_info& info, const write_options& opts, warnings& warn) {
+    if (is_gltf(f)) return make_gltf_table(f, path, out, opts.gltf, warn);
     return std::make_unique<piped_table>(f, path, out, info, opts, warn);
 }
 

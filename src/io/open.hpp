@@ -13,7 +13,7 @@
 
 namespace keyrot {
 
-/// For format::csv or format::ndjson, or format::json where the document
+/// For format::csv, format::ndjson, glTF, or format::json where the document
 /// allows (make_json_reader). Warnings (unknown columns) go to `warn`. With
 /// `parse_ahead`, keys are parsed on threads of their own ahead of the
 /// caller once more than a thousand have come and `parse_ahead()` (asked
@@ -27,8 +27,8 @@ std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const re
 std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,
                                           const write_options& opts, warnings& warn);
 
-/// A table in format `f` into `path` (none: `out`). Euler output warns once
-/// about gimbal lock through `warn`.
+/// A table in format `f` into `path` (none: `out`), or a glTF file
+/// (make_gltf_table). Euler output warns once about gimbal lock through `warn`.
 std::unique_ptr<table_output> open_table(format f, const std::optional<std::string>& path, std::ostream& out,
                                          const table_info& info, const write_options& opts, warnings& warn);
 
