@@ -233,6 +233,14 @@ def make_cases(work):
     c.end()
     cases.append((c, "glb"))
 
+    # A long take: times past 16 s, where a 32-bit float's rounding is more than compare's 1e-6 s.
+    c = Case("long.glb")
+    c.b.skeleton(20)
+    c.begin()
+    c.channel("joint3", 3, "rotation", np.arange(500) * 0.1, random_quats(rng, 500, 0.3))
+    c.end()
+    cases.append((c, "glb"))
+
     # Two animations on a 60-joint skeleton: tracks "Walk/joint3", "Run/joint3".
     c = Case("two.glb")
     c.b.skeleton(60)
@@ -382,8 +390,9 @@ def meshes_by_content(doc, binary):
 
 
 def frames_by_key(text):
-    """Rows by track and time to 1e-6 s: a glTF file stores times as 32-bit floats."""
-    return {(r["track"], round(float(r["time"]), 6)): r for r in read_csv(text)}
+    """Rows by track and time in 1/1200 s (a multiple of every rate used here): a glTF file
+    stores times as 32-bit floats."""
+    return {(r["track"], round(float(r["time"]) * 1200)): r for r in read_csv(text)}
 
 
 def compare_frames(label, expected_text, actual_text, tol_deg):
@@ -423,6 +432,14 @@ def check_gltf_output(case, fps, how, written):
     if status != 0 or not compare_frames(f"{out} read back", direct, back, FLOAT32_DEG):
         if status:
             fail(f"{out}: read back: {err.strip()}")
+        return
+    # compare matches the frames keyrot writes in CSV with the glTF file's, at any length of take.
+    direct_file = out + ".csv"
+    with open(direct_file, "w") as f:
+        f.write(direct)
+    status, _, err = run(["compare", direct_file, out, "--tol", "1e-4"])
+    if status != 0:
+        fail(f"compare {direct_file} {out}: status {status}: {err.strip()[:300]}")
         return
     din, bin_in = gltf_parts(case.path)
     dout, bin_out = gltf_parts(out)
@@ -652,7 +669,7 @@ def main():
             for fps in (24, 30, 60):
                 check_resample(case, fps)
             check_convert(case)
-        two = cases[-1]
+        two = cases[-1]  # (the two animations)
         check_resample(two, 24, ["--animation", "Run"], animation="Run")
         check_resample(two, 24, ["--animation", "0"], animation="Walk")
         with open(cases[0].path, "rb") as f:

@@ -16,14 +16,16 @@ namespace keyrot {
 namespace {
 
 /// Finds the key of a track that matches another key: the first by frame if
-/// both have one, else by time (|dt| <= tol::match_time). Binary searches of
+/// both have one, else by time (|dt| <= tol::match_time, or the times'
+/// rounding as stored where that is more: 2^-24 of them in a glTF file). Binary searches of
 /// the frames (sorted, ties by position) and of the times (which increase
 /// strictly within a track) make that O(log n) rather than a scan, so that
 /// long tracks compare in n log n.
 class key_finder {
 public:
-    /// `by_frame`: frame numbers count at the same rate in both tracks.
-    key_finder(const track& t, bool by_frame) : keys_(t.keys), by_frame_(by_frame) {
+    /// `by_frame`: frame numbers count at the same rate in both tracks;
+    /// `rounding`: the relative rounding of either track's times as stored.
+    key_finder(const track& t, bool by_frame, double rounding) : keys_(t.keys), by_frame_(by_frame), rounding_(rounding) {
         for (std::size_t i = 0; i < keys_.size(); ++i) {
             if (keys_[i].frame && by_frame) frames_.emplace_back(*keys_[i].frame, i);
             else without_frame_.push_back(i);
@@ -48,22 +50,26 @@ private:
     // Among keys in increasing time, those too early form a prefix, as
     // k.time - other.time only falls as other.time grows: the first key
     // after it is the one candidate.
-    static bool too_early(const key& other, const key& k) {
-        return other.time < k.time && k.time - other.time > tol::match_time;
+    double tolerance(const key& k) const { return std::max(tol::match_time, std::fabs(k.time) * rounding_); }
+    bool too_early(const key& other, const key& k) const {
+        return other.time < k.time && k.time - other.time > tolerance(k);
     }
-    static bool near(const key& other, const key& k) { return std::fabs(k.time - other.time) <= tol::match_time; }
+    bool near(const key& other, const key& k) const { return std::fabs(k.time - other.time) <= tolerance(k); }
 
     std::optional<std::size_t> find_by_time(const key& k) const {
-        const auto it = std::partition_point(keys_.begin(), keys_.end(), [&k](const key& other) { return too_early(other, k); });
+        const auto it = std::partition_point(keys_.begin(), keys_.end(), [&](const key& other) { return too_early(other, k); });
         if (it == keys_.end() || !near(*it, k)) return std::nullopt;
         return static_cast<std::size_t>(it - keys_.begin());
     }
 
     const std::vector<key>& keys_;
     bool by_frame_;
+    double rounding_;
     std::vector<std::pair<double, std::size_t>> frames_;  ///< (frame, index) of the keys that have one
     std::vector<std::size_t> without_frame_;
 };
+
+double rounding_of(const track& t) { return t.interpolation ? t.interpolation->time_rounding : 0; }
 
 row_difference unmatched(const track& t, const key& k, const char* problem) {
     return {t.name, k.frame, k.time, std::nullopt, std::nullopt, problem};
@@ -91,7 +97,9 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
         if (a && a->key_fps != e.key_fps && !out.frame_rates && has_frames(e) && has_frames(*a))
             out.frame_rates = std::pair(e.key_fps, a->key_fps);
         const std::optional<key_finder> finder =
-            a ? std::optional<key_finder>(std::in_place, *a, a->key_fps == e.key_fps) : std::nullopt;
+            a ? std::optional<key_finder>(std::in_place, *a, a->key_fps == e.key_fps,
+                                          std::max(rounding_of(e), rounding_of(*a)))
+              : std::nullopt;
         for (const key& k : e.keys) {
             const auto j = finder ? finder->find(k) : std::nullopt;
             if (!j) {
