@@ -44,7 +44,12 @@ std::string formats_help() {
     for (const auto& [r, fields] : json_fields) out += fmt::format("  {:<12}{}\n", to_string(r), fields);
     out += "\nNDJSON: one KEY object per line, with \"track\" when there are tracks; a first line without a rotation\n"
            "holds the settings, as keyrot writes it.\n"
-           "\nA file's format is known by its extension (.csv, .json, .ndjson or .jsonl), else by its content.\n"
+           "\nglTF 2.0 (.gltf with its buffers, or .glb): each node an animation moves is a track named after it\n"
+           "(\"<animation>/<node>\" when there are several animations; --animation picks one), its rotation and\n"
+           "translation channels interpolated as their samplers say (LINEAR, STEP, CUBICSPLINE). A glTF output of a\n"
+           "glTF input is that file with its samplers replaced; of any other input, a new file with a node per track.\n"
+           "\nA file's format is known by its extension (.csv, .json, .ndjson or .jsonl, .gltf, .glb), else by its\n"
+           "content.\n"
            "keyrot reads all it writes: a JSON document with \"frames\" in place of \"keys\", and \"# keyrot {...}\" "
            "lines\nstating the settings of a CSV file.\n";
     return out;
