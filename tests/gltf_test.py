@@ -646,6 +646,16 @@ def bad_cases(work):
 
 def check_bad(work):
     global checks
+    # A translation a 32-bit float cannot hold, into glTF.
+    big = os.path.join(work, "big.csv")
+    with open(big, "w") as f:
+        f.write("time,qw,qx,qy,qz,tx,ty,tz\n0,1,0,0,0,1e39,0,0\n1,1,0,0,0,0,0,0\n")
+    status, _, err = run(["resample", big, "-o", os.path.join(work, "big.glb")])
+    if status != 2 or err.strip() != f"keyrot: {big}: translation 1e+39 is beyond a 32-bit float: expected what glTF can store" \
+            or os.path.exists(os.path.join(work, "big.glb")):
+        fail(f"big.csv into glTF: status {status}, {err.strip()!r}")
+    else:
+        checks += 1
     for name, data, expected in bad_cases(work):
         path = os.path.join(work, name)
         with open(path, "wb") as f:

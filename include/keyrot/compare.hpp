@@ -39,8 +39,8 @@ struct comparison {
 /// Rows are matched by track name and frame when both keys have a frame and
 /// both tracks count frames at the same rate (key_fps), else by track and
 /// time (|dt| <= tol::match_time, or either track's time rounding as
-/// stored, track_interpolation::time_rounding, where that is more). A track and its negation (every q as -q)
-/// compare equal: every angle_deg 0, failed 0.
+/// stored, track_interpolation::time_rounding, where that is more). A track
+/// and its negation (every q as -q) compare equal: every angle_deg 0, failed 0.
 comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual,
                           const tolerances& tol);
 

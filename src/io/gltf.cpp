@@ -50,7 +50,8 @@ channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std:
         throw input_error(at, "expected an object with input and output");
     const std::string interpolation = string_member(sampler, "interpolation", "LINEAR", at);
     if (interpolation != "LINEAR" && interpolation != "STEP" && interpolation != "CUBICSPLINE")
-        throw input_error(at, fmt::format("interpolation '{}': expected LINEAR, STEP or CUBICSPLINE", excerpt(interpolation)));
+        throw input_error(
+            at, fmt::format("interpolation '{}': expected LINEAR, STEP or CUBICSPLINE", excerpt(interpolation)));
     c.how = method_of(interpolation);
     c.times = read_accessor(file, sampler["input"], path + ".input", {"SCALAR", false});
     for (std::size_t i = 1; i < c.times.size(); ++i)
@@ -61,9 +62,10 @@ channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std:
     c.values = read_accessor(file, sampler["output"], path + ".output", {width == 4 ? "VEC4" : "VEC3", true});
     const std::size_t per_key = c.how == method::cubicspline ? 3 : 1;
     if (c.values.size() != c.keys() * per_key * width)
-        throw input_error(at + ".output", fmt::format("{} elements for {} key times: expected {}{}", c.values.size() / width,
-                                                      c.keys(), c.keys() * per_key,
-                                                      per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent per key)" : ""));
+        throw input_error(at + ".output",
+                          fmt::format("{} elements for {} key times: expected {}{}", c.values.size() / width, c.keys(),
+                                      c.keys() * per_key,
+                                      per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent per key)" : ""));
     if (c.how == method::cubicspline && c.keys() < 2)
         throw input_error(at, "CUBICSPLINE with one key: expected at least two");
     if (width == 4)  // glTF stores x, y, z, w; keyrot's order is w, x, y, z
@@ -82,7 +84,8 @@ std::pair<std::array<double, 4>, std::array<double, 4>> evaluate(const channel_c
     // Outside its keys a channel holds its first or last value (as glTF clamps).
     if (time <= c.times.front()) return {c.get(0, 0), {}};
     if (time >= c.times.back()) return {c.get(c.keys() - 1, 0), {}};
-    const std::size_t i = static_cast<std::size_t>(std::upper_bound(c.times.begin(), c.times.end(), time) - c.times.begin()) - 1;
+    const std::size_t i =
+        static_cast<std::size_t>(std::upper_bound(c.times.begin(), c.times.end(), time) - c.times.begin()) - 1;
     if (c.times[i] == time || c.how == method::step) return {c.get(i, 0), {}};
     const double seconds = c.times[i + 1] - c.times[i], h = (time - c.times[i]) / seconds;
     if (c.how == method::cubicspline) {
@@ -117,7 +120,8 @@ quat rest_rotation(const gltf_file& file, std::size_t node) {
     if (!n.is_object() || !n.contains("rotation")) return {};
     const gltf_json& r = n["rotation"];
     const std::string at = fmt::format("{}: nodes[{}].rotation", file.source, node);
-    if (!r.is_array() || r.size() != 4 || !std::all_of(r.begin(), r.end(), [](const gltf_json& v) { return v.is_number(); }))
+    if (!r.is_array() || r.size() != 4 ||
+        !std::all_of(r.begin(), r.end(), [](const gltf_json& v) { return v.is_number(); }))
         throw input_error(at, "expected four numbers (x, y, z, w)");
     const quat q{r[3].get<double>(), r[0].get<double>(), r[1].get<double>(), r[2].get<double>()};
     if (!(norm(q) > 0)) throw input_error(at, "quaternion is zero: expected a rotation");
@@ -143,14 +147,16 @@ std::vector<std::size_t> chosen_animations(const gltf_file& file, const std::opt
     }
     for (std::size_t a = 0; a < names.size(); ++a)
         if (names[a] == *wanted || std::to_string(a) == *wanted) return {a};
-    throw input_error(file.source, fmt::format("--animation {}: no such animation: expected one of {} or an index 0 to {}",
-                                               excerpt(*wanted), excerpt(fmt::format("{}", fmt::join(names, ", ")), 200),
-                                               names.size() - 1));
+    throw input_error(
+        file.source,
+        fmt::format("--animation {}: no such animation: expected one of {} or an index 0 to {}", excerpt(*wanted),
+                    excerpt(fmt::format("{}", fmt::join(names, ", ")), 200), names.size() - 1));
 }
 
 std::string animation_name(const gltf_file& file, std::size_t a) {
     const gltf_json& anim = top_array(file, "animations")[a];
-    if (anim.contains("name") && anim["name"].is_string() && !anim["name"].get<std::string>().empty()) return anim["name"];
+    if (anim.contains("name") && anim["name"].is_string() && !anim["name"].get<std::string>().empty())
+        return anim["name"];
     return fmt::format("animation{}", a);
 }
 
@@ -180,8 +186,8 @@ std::vector<node_track> channels_of(const gltf_file& file, std::size_t a, warnin
         const gltf_json& target = ch["target"];
         const std::string what = string_member(target, "path", "", here + ".target");
         if (!target.contains("node")) {
-            warn.once("gltf-no-node", fmt::format("{}.channels[{}]: a channel without a node (an extension's) is left out",
-                                                  path, c));
+            warn.once("gltf-no-node",
+                      fmt::format("{}.channels[{}]: a channel without a node (an extension's) is left out", path, c));
             continue;
         }
         const std::size_t node = index_into(file, target["node"], "nodes", here + ".target.node");
@@ -192,12 +198,14 @@ std::vector<node_track> channels_of(const gltf_file& file, std::size_t a, warnin
             continue;
         }
         if (!ch["sampler"].is_number_unsigned() || ch["sampler"].get<std::size_t>() >= samplers.size())
-            throw input_error(here + ".sampler",
-                              fmt::format("{}: expected an index into {}.samplers", excerpt(ch["sampler"].dump()), path));
+            throw input_error(here + ".sampler", fmt::format("{}: expected an index into {}.samplers",
+                                                             excerpt(ch["sampler"].dump()), path));
         const auto [it, added] = index.emplace(node, nodes.size());
         if (added) nodes.push_back({{a, node, std::nullopt, std::nullopt}, {}});
         auto& slot = what == "rotation" ? nodes[it->second].origin.rotation : nodes[it->second].origin.translation;
-        if (slot) throw input_error(here, fmt::format("node {}'s {} is animated twice in one animation: expected once", node, what));
+        if (slot)
+            throw input_error(
+                here, fmt::format("node {}'s {} is animated twice in one animation: expected once", node, what));
         slot = c;
     }
     return nodes;
@@ -219,8 +227,9 @@ std::vector<node_track> tracks_of(const gltf_file& file, const read_options& ro,
         }
     }
     if (tracks.empty())
-        throw input_error(ro.source, "no rotation or translation channels: expected an animation of a node's rotation "
-                                     "or translation");
+        throw input_error(ro.source,
+                          "no rotation or translation channels: expected an animation of a node's rotation "
+                          "or translation");
     return tracks;
 }
 
@@ -257,7 +266,8 @@ private:
         const auto read = [&](std::optional<std::size_t> channel, std::size_t width) -> std::optional<channel_curve> {
             if (!channel) return std::nullopt;
             const std::size_t s = anim["channels"][*channel]["sampler"];
-            return read_sampler(file_, anim["samplers"][s], fmt::format("animations[{}].samplers[{}]", o.animation, s), width);
+            return read_sampler(file_, anim["samplers"][s], fmt::format("animations[{}].samplers[{}]", o.animation, s),
+                                width);
         };
         rotation_ = read(o.rotation, 4);
         translation_ = read(o.translation, 3);
@@ -293,7 +303,8 @@ private:
                 if (rotation_->how == method::cubicspline) {
                     // The first key's in-tangent and the last's out-tangent do nothing in glTF; zero, they
                     // keep the rotation held where the translation's keys reach beyond it.
-                    const bool held_before = i == 0 && times_.front() < t, held_after = i + 1 == rotation_->keys() && times_.back() > t;
+                    const bool held_before = i == 0 && times_.front() < t,
+                               held_after = i + 1 == rotation_->keys() && times_.back() > t;
                     const auto in = held_before ? std::array<double, 4>{} : rotation_->get(i, -1);
                     const auto out = held_after ? std::array<double, 4>{} : rotation_->get(i, 1);
                     s.rotation_in = {in[0], in[1], in[2], in[3]}, s.rotation_out = {out[0], out[1], out[2], out[3]};
@@ -309,7 +320,8 @@ private:
             raw.values = {q.w, q.x, q.y, q.z};
             // Where make_key may say something of the key (zero, or renormalised): formatted only then.
             if (std::fabs(norm(q) - 1) > tol::unit_norm)
-                raw.at.path = keyed ? fmt::format("{}.output[{}]", rotation_->path, i) : fmt::format("{}.input", translation_->path);
+                raw.at.path = keyed ? fmt::format("{}.output[{}]", rotation_->path, i)
+                                    : fmt::format("{}.input", translation_->path);
         } else {
             if (std::fabs(norm(rest_) - 1) > tol::unit_norm) raw.at.path = fmt::format("nodes[{}].rotation", node_);
             raw.values = {rest_.w, rest_.x, rest_.y, rest_.z};
@@ -321,7 +333,8 @@ private:
             std::array<double, 4> v{}, in{}, out{};
             if (*key == t) {
                 v = translation_->get(i, 0);
-                if (translation_->how == method::cubicspline) in = translation_->get(i, -1), out = translation_->get(i, 1);
+                if (translation_->how == method::cubicspline)
+                    in = translation_->get(i, -1), out = translation_->get(i, 1);
             } else {
                 std::tie(v, in) = evaluate(*translation_, t);
                 out = in;

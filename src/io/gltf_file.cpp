@@ -28,16 +28,18 @@ std::uint32_t little_endian(const char* p, int bytes) {
 constexpr std::uint32_t glb_json_chunk = 0x4E4F534A, glb_bin_chunk = 0x004E4942;
 
 /// A .glb's chunks: the JSON text, and the BIN chunk if there is one.
-std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::string_view bytes, const std::string& source) {
+std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::string_view bytes,
+                                                                        const std::string& source) {
     if (bytes.size() < 12)
         throw input_error(source, fmt::format("truncated GLB: {} bytes, expected a 12-byte header", bytes.size()));
-    if (bytes.substr(0, 4) != "glTF") throw input_error(source, "not a GLB file: expected the magic 'glTF' at its start");
+    if (bytes.substr(0, 4) != "glTF")
+        throw input_error(source, "not a GLB file: expected the magic 'glTF' at its start");
     if (const auto version = little_endian(bytes.data() + 4, 4); version != 2)
         throw input_error(source, fmt::format("GLB version {}: expected 2 (glTF 2.0)", version));
     const std::size_t length = little_endian(bytes.data() + 8, 4);
     if (length > bytes.size())
-        throw input_error(source, fmt::format("truncated GLB: the header says {} bytes, the file has {}", length,
-                                              bytes.size()));
+        throw input_error(
+            source, fmt::format("truncated GLB: the header says {} bytes, the file has {}", length, bytes.size()));
     if (length < bytes.size())
         throw input_error(source, fmt::format("GLB of {} bytes has {} more after its end: expected the length its "
                                               "header states",
@@ -51,7 +53,8 @@ std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::str
         if (size > length - at - 8)
             throw input_error(source, fmt::format("GLB chunk {} of {} bytes runs past the end of the file", n, size));
         const std::string_view data = bytes.substr(at + 8, size);
-        if (n == 0 && type != glb_json_chunk) throw input_error(source, "GLB's first chunk is not JSON: expected a JSON chunk");
+        if (n == 0 && type != glb_json_chunk)
+            throw input_error(source, "GLB's first chunk is not JSON: expected a JSON chunk");
         if (n == 0) json = data;
         if (n == 1 && type == glb_bin_chunk) bin = data;  // other chunk types are to be ignored
         at += 8 + size;
@@ -62,12 +65,21 @@ std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::str
 
 /// Extensions that change nothing keyrot reads or writes of an animation:
 /// a file that requires any other is refused.
-const std::set<std::string, std::less<>> harmless_required = {
-    "KHR_materials_clearcoat", "KHR_materials_emissive_strength", "KHR_materials_ior",
-    "KHR_materials_iridescence", "KHR_materials_sheen", "KHR_materials_specular",
-    "KHR_materials_transmission", "KHR_materials_unlit", "KHR_materials_variants",
-    "KHR_materials_volume", "KHR_mesh_quantization", "KHR_texture_basisu",
-    "KHR_texture_transform", "KHR_lights_punctual", "EXT_texture_webp"};
+const std::set<std::string, std::less<>> harmless_required = {"KHR_materials_clearcoat",
+                                                              "KHR_materials_emissive_strength",
+                                                              "KHR_materials_ior",
+                                                              "KHR_materials_iridescence",
+                                                              "KHR_materials_sheen",
+                                                              "KHR_materials_specular",
+                                                              "KHR_materials_transmission",
+                                                              "KHR_materials_unlit",
+                                                              "KHR_materials_variants",
+                                                              "KHR_materials_volume",
+                                                              "KHR_mesh_quantization",
+                                                              "KHR_texture_basisu",
+                                                              "KHR_texture_transform",
+                                                              "KHR_lights_punctual",
+                                                              "EXT_texture_webp"};
 
 void check_header(const gltf_json& json, const std::string& source) {
     if (!json.is_object()) throw input_error(source, "expected a glTF JSON object");
@@ -80,7 +92,8 @@ void check_header(const gltf_json& json, const std::string& source) {
         throw input_error(source, fmt::format("asset.version: glTF {}: expected 2.0", excerpt(version)));
     if (const auto required = json.find("extensionsRequired"); required != json.end() && required->is_array())
         for (std::size_t i = 0; i < required->size(); ++i)
-            if (const auto& name = (*required)[i]; !name.is_string() || !harmless_required.contains(name.get<std::string>()))
+            if (const auto& name = (*required)[i];
+                !name.is_string() || !harmless_required.contains(name.get<std::string>()))
                 throw input_error(source, fmt::format("extensionsRequired[{}]: {} changes what keyrot reads: expected "
                                                       "a file without it (decompress it first)",
                                                       i, excerpt(name.dump())));
@@ -137,7 +150,8 @@ std::string_view buffer_bytes(gltf_file& file, std::size_t i) {
     const std::size_t length = b["byteLength"];
     std::string bytes;
     if (!b.contains("uri")) {
-        if (i != 0 || !file.bin) throw input_error(at, "no uri, and the file has no GLB BIN chunk: expected one of them");
+        if (i != 0 || !file.bin)
+            throw input_error(at, "no uri, and the file has no GLB BIN chunk: expected one of them");
         const std::string_view chunk = std::string_view(file.glb).substr(file.bin->first, file.bin->second);
         if (chunk.size() < length)
             throw input_error(at, fmt::format("holds {} bytes: expected byteLength {}", chunk.size(), length));
@@ -147,12 +161,16 @@ std::string_view buffer_bytes(gltf_file& file, std::size_t i) {
     } else if (const std::string uri = b["uri"]; uri.starts_with("data:")) {
         const auto comma = uri.find(',');
         const std::optional<std::string> decoded =
-            comma != std::string::npos && uri.substr(0, comma).ends_with(";base64") ? base64_decoded(std::string_view(uri).substr(comma + 1)) : std::nullopt;
-        if (!decoded) throw input_error(at, "uri: expected a base64 data: URI ('data:application/octet-stream;base64,...')");
+            comma != std::string::npos && uri.substr(0, comma).ends_with(";base64")
+                ? base64_decoded(std::string_view(uri).substr(comma + 1))
+                : std::nullopt;
+        if (!decoded)
+            throw input_error(at, "uri: expected a base64 data: URI ('data:application/octet-stream;base64,...')");
         bytes = *decoded;
     } else {
         if (uri.find("://") != std::string::npos || uri.starts_with("/"))
-            throw input_error(at, fmt::format("uri '{}': expected a file beside the glTF file (a relative URI)", excerpt(uri)));
+            throw input_error(
+                at, fmt::format("uri '{}': expected a file beside the glTF file (a relative URI)", excerpt(uri)));
         const std::filesystem::path name = std::filesystem::path(file.directory) / percent_decoded(uri);
         std::ifstream in(name, std::ios::binary);
         if (!in) throw input_error(at, fmt::format("cannot read '{}'", name.string()));
@@ -180,13 +198,20 @@ struct component_type {
 
 std::optional<component_type> component_of(int code) {
     switch (code) {
-        case 5120: return component_type{code, 1, true};
-        case 5121: return component_type{code, 1, false};
-        case 5122: return component_type{code, 2, true};
-        case 5123: return component_type{code, 2, false};
-        case 5125: return component_type{code, 4, false};
-        case 5126: return component_type{code, 4, true};
-        default: return std::nullopt;
+        case 5120:
+            return component_type{code, 1, true};
+        case 5121:
+            return component_type{code, 1, false};
+        case 5122:
+            return component_type{code, 2, true};
+        case 5123:
+            return component_type{code, 2, false};
+        case 5125:
+            return component_type{code, 4, false};
+        case 5126:
+            return component_type{code, 4, true};
+        default:
+            return std::nullopt;
     }
 }
 
@@ -217,7 +242,6 @@ std::size_t components_of(std::string_view type) {
     if (type == "MAT4") return 16;
     return 0;
 }
-
 
 /// The bytes of bufferView `view` (checked against its buffer), and its stride.
 std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf_json& view, const std::string& at) {
@@ -274,8 +298,10 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
     // In one piece where the stream knows its size (a file), else a piece at a time.
     in.seekg(0, std::ios::end);
     if (const std::streamoff size = in.tellg(); in && size >= 0) {
-        if (static_cast<std::size_t>(size) > max_bytes) bytes.resize(max_bytes + 1);
-        else bytes.resize(static_cast<std::size_t>(size));
+        if (static_cast<std::size_t>(size) > max_bytes)
+            bytes.resize(max_bytes + 1);
+        else
+            bytes.resize(static_cast<std::size_t>(size));
         in.seekg(0);
         in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         bytes.resize(static_cast<std::size_t>(in.gcount()));
@@ -287,8 +313,9 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
             bytes.append(chunk, static_cast<std::size_t>(in.gcount()));
     }
     if (bytes.size() > max_bytes)
-        throw input_error(source, fmt::format("more than {} bytes: expected a smaller file (--max-bytes N raises the limit)",
-                                              max_bytes));
+        throw input_error(
+            source,
+            fmt::format("more than {} bytes: expected a smaller file (--max-bytes N raises the limit)", max_bytes));
     std::string_view json = bytes;
     if (f == format::glb) {
         const auto [text, bin] = glb_chunks(bytes, source);
@@ -309,17 +336,18 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
     const std::string here = fmt::format("{}: accessor {}", at, a);
     if (!acc.is_object()) throw input_error(here, "expected an object");
     const std::string type = string_member(acc, "type", "", here);
-    if (type != kind.type)
-        throw input_error(here, fmt::format("type '{}': expected {}", excerpt(type), kind.type));
-    const int code = acc.contains("componentType") && acc["componentType"].is_number_integer() ? acc["componentType"].get<int>() : 0;
+    if (type != kind.type) throw input_error(here, fmt::format("type '{}': expected {}", excerpt(type), kind.type));
+    const int code =
+        acc.contains("componentType") && acc["componentType"].is_number_integer() ? acc["componentType"].get<int>() : 0;
     const std::optional<component_type> c = component_of(code);
-    const bool normalized = acc.contains("normalized") && acc["normalized"].is_boolean() && acc["normalized"].get<bool>();
+    const bool normalized =
+        acc.contains("normalized") && acc["normalized"].is_boolean() && acc["normalized"].get<bool>();
     if (!c || !(code == 5126 || (kind.normalized_integers && normalized && c->bytes < 4)))
-        throw input_error(here, fmt::format("componentType {}{}: expected FLOAT (5126){}", code,
-                                            normalized ? ", normalized" : "",
-                                            kind.normalized_integers ? " or a normalised BYTE, UNSIGNED_BYTE, SHORT or "
-                                                                       "UNSIGNED_SHORT"
-                                                                     : ""));
+        throw input_error(
+            here, fmt::format("componentType {}{}: expected FLOAT (5126){}", code, normalized ? ", normalized" : "",
+                              kind.normalized_integers ? " or a normalised BYTE, UNSIGNED_BYTE, SHORT or "
+                                                         "UNSIGNED_SHORT"
+                                                       : ""));
     const std::size_t count = unsigned_member(acc, "count", 0, here);
     if (count == 0) throw input_error(here, "count: expected at least 1 element");
     const std::size_t n = components_of(type), element = n * static_cast<std::size_t>(c->bytes);
@@ -328,14 +356,16 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
         const auto [bytes, byte_stride] = buffer_view(file, acc["bufferView"], here);
         const std::size_t stride = byte_stride ? byte_stride : element;
         const std::size_t offset = unsigned_member(acc, "byteOffset", 0, here);
-        if (stride < element) throw input_error(here, fmt::format("byteStride {} is less than an element's {} bytes", stride, element));
+        if (stride < element)
+            throw input_error(here, fmt::format("byteStride {} is less than an element's {} bytes", stride, element));
         if (offset > bytes.size() || (count - 1) > (bytes.size() - offset) / stride ||
             (count - 1) * stride + element > bytes.size() - offset)
             throw input_error(here, fmt::format("{} elements from byte {} read past the end of bufferView {}", count,
                                                 offset, acc["bufferView"].get<std::size_t>()));
         for (std::size_t i = 0; i < count; ++i)
             for (std::size_t j = 0; j < n; ++j)
-                values[i * n + j] = decoded(bytes.data() + offset + i * stride + j * static_cast<std::size_t>(c->bytes), *c, normalized);
+                values[i * n + j] = decoded(bytes.data() + offset + i * stride + j * static_cast<std::size_t>(c->bytes),
+                                            *c, normalized);
     }
     if (const auto sparse = acc.find("sparse"); sparse != acc.end()) {
         const std::string there = here + " sparse";
@@ -352,20 +382,27 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
                                    ? indices["componentType"].get<int>()
                                    : 0;
         const std::optional<component_type> ic = component_of(index_code);
-        if (!ic || ic->is_signed) throw input_error(there, fmt::format("indices.componentType {}: expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT", index_code));
+        if (!ic || ic->is_signed)
+            throw input_error(
+                there, fmt::format("indices.componentType {}: expected UNSIGNED_BYTE, UNSIGNED_SHORT or UNSIGNED_INT",
+                                   index_code));
         const auto [index_bytes, s1] = buffer_view(file, indices["bufferView"], there);
         const auto [value_bytes, s2] = buffer_view(file, substitutes["bufferView"], there);
-        const std::size_t io = unsigned_member(indices, "byteOffset", 0, there), vo = unsigned_member(substitutes, "byteOffset", 0, there);
+        const std::size_t io = unsigned_member(indices, "byteOffset", 0, there),
+                          vo = unsigned_member(substitutes, "byteOffset", 0, there);
         if (io > index_bytes.size() || k > (index_bytes.size() - io) / static_cast<std::size_t>(ic->bytes) ||
             vo > value_bytes.size() || k > (value_bytes.size() - vo) / element)
             throw input_error(there, fmt::format("{} substitutes read past the end of their bufferViews", k));
         for (std::size_t i = 0, previous = 0; i < k; ++i) {
-            const std::size_t e = little_endian(index_bytes.data() + io + i * static_cast<std::size_t>(ic->bytes), ic->bytes);
+            const std::size_t e =
+                little_endian(index_bytes.data() + io + i * static_cast<std::size_t>(ic->bytes), ic->bytes);
             if (e >= count || (i > 0 && e <= previous))
-                throw input_error(there, fmt::format("index {} at {}: expected strictly increasing indices below {}", e, i, count));
+                throw input_error(
+                    there, fmt::format("index {} at {}: expected strictly increasing indices below {}", e, i, count));
             previous = e;
             for (std::size_t j = 0; j < n; ++j)
-                values[e * n + j] = decoded(value_bytes.data() + vo + i * element + j * static_cast<std::size_t>(c->bytes), *c, normalized);
+                values[e * n + j] = decoded(
+                    value_bytes.data() + vo + i * element + j * static_cast<std::size_t>(c->bytes), *c, normalized);
         }
     }
     for (std::size_t i = 0; i < values.size(); ++i)

@@ -16,14 +16,31 @@ namespace {
 /// Extensions whose references to accessors and bufferViews this writer
 /// renumbers, or which hold none: a file that uses any other is not
 /// rewritten, since an index it holds could come to name the wrong data.
-const std::set<std::string, std::less<>> renumbered_or_harmless = {
-    "EXT_lights_image_based", "EXT_mesh_gpu_instancing", "EXT_texture_webp", "KHR_animation_pointer",
-    "KHR_draco_mesh_compression", "KHR_lights_punctual", "KHR_materials_anisotropy", "KHR_materials_clearcoat",
-    "KHR_materials_dispersion", "KHR_materials_emissive_strength", "KHR_materials_ior", "KHR_materials_iridescence",
-    "KHR_materials_pbrSpecularGlossiness", "KHR_materials_sheen", "KHR_materials_specular",
-    "KHR_materials_transmission", "KHR_materials_unlit", "KHR_materials_variants", "KHR_materials_volume",
-    "KHR_mesh_quantization", "KHR_texture_basisu", "KHR_texture_transform", "KHR_xmp_json_ld", "MSFT_lod",
-    "MSFT_texture_dds"};
+const std::set<std::string, std::less<>> renumbered_or_harmless = {"EXT_lights_image_based",
+                                                                   "EXT_mesh_gpu_instancing",
+                                                                   "EXT_texture_webp",
+                                                                   "KHR_animation_pointer",
+                                                                   "KHR_draco_mesh_compression",
+                                                                   "KHR_lights_punctual",
+                                                                   "KHR_materials_anisotropy",
+                                                                   "KHR_materials_clearcoat",
+                                                                   "KHR_materials_dispersion",
+                                                                   "KHR_materials_emissive_strength",
+                                                                   "KHR_materials_ior",
+                                                                   "KHR_materials_iridescence",
+                                                                   "KHR_materials_pbrSpecularGlossiness",
+                                                                   "KHR_materials_sheen",
+                                                                   "KHR_materials_specular",
+                                                                   "KHR_materials_transmission",
+                                                                   "KHR_materials_unlit",
+                                                                   "KHR_materials_variants",
+                                                                   "KHR_materials_volume",
+                                                                   "KHR_mesh_quantization",
+                                                                   "KHR_texture_basisu",
+                                                                   "KHR_texture_transform",
+                                                                   "KHR_xmp_json_ld",
+                                                                   "MSFT_lod",
+                                                                   "MSFT_texture_dds"};
 
 /// Calls f on each member of `j` at `path` (names; "*" for every element
 /// or member) that exists.
@@ -74,14 +91,18 @@ void compact(gltf_json& j, const char* name, const std::vector<bool>& keep, Refs
     refs(j, [&](gltf_json& ref) {
         if (ref.is_number_unsigned() && ref.get<std::size_t>() < keep.size()) ref = renumbered[ref.get<std::size_t>()];
     });
-    if (array.empty()) j.erase(name);
-    else j[name] = std::move(array);
+    if (array.empty())
+        j.erase(name);
+    else
+        j[name] = std::move(array);
 }
 
 /// The binary buffer of the output, its bufferViews and accessors appended to.
 class buffer_builder {
 public:
-    explicit buffer_builder(gltf_json& json) : json_(json) {}
+    /// `input`: the source of the rows, for messages.
+    buffer_builder(gltf_json& json, std::string input) : source(std::move(input)), json_(json) {}
+    std::string source;
     std::string bytes;
 
     /// A bufferView of `data`, starting at an offset with the given remainder mod 4.
@@ -126,23 +147,24 @@ private:
     gltf_json& json_;
 };
 
-float single(double v, const std::string& track, const char* what) {
+/// `v` as a 32-bit float; an input_error at `where` ("walk.csv: track 'hip'") where it is too large for one.
+float single(double v, const std::string& where, const char* what) {
     const auto f = static_cast<float>(v);
     if (!std::isfinite(f))
-        throw error(fmt::format("track '{}': {} {} is beyond a 32-bit float: expected what glTF can store", track, what, v));
+        throw input_error(where, fmt::format("{} {} is beyond a 32-bit float: expected what glTF can store", what, v));
     return f;
 }
 
 /// Times as 32-bit floats, still strictly increasing.
-std::vector<float> time_values(const std::vector<double>& times, const std::string& track) {
+std::vector<float> time_values(const std::vector<double>& times, const std::string& where) {
     std::vector<float> out;
     out.reserve(times.size());
     for (const double t : times) {
-        out.push_back(single(t, track, "time"));
+        out.push_back(single(t, where, "time"));
         if (out.size() > 1 && !(out.back() > out[out.size() - 2]))
-            throw error(fmt::format("track '{}': times {} s and {} s are one 32-bit float, as glTF stores them: expected "
-                                    "keys further apart (a lower --fps)",
-                                    track, times[out.size() - 2], t));
+            throw input_error(where, fmt::format("times {} s and {} s are one 32-bit float, as glTF stores them: "
+                                                 "expected keys further apart (a lower --fps)",
+                                                 times[out.size() - 2], t));
     }
     return out;
 }
@@ -159,12 +181,13 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_trac
     // Rotation and translation on the same times share their input.
     const std::vector<double>* same = &t.times;
     const bool shared = !rotation && t.translation_times == t.times;
+    const std::string where = t.name.empty() ? b.source : fmt::format("{}: track '{}'", b.source, t.name);
     auto input = inputs.find(shared ? same : &times);
     if (input == inputs.end())
-        input = inputs.emplace(shared ? same : &times, b.accessor(time_values(times, t.name), 1, true)).first;
+        input = inputs.emplace(shared ? same : &times, b.accessor(time_values(times, where), 1, true)).first;
     std::vector<float> values;
     const auto put = [&](std::initializer_list<double> v) {
-        for (const double x : v) values.push_back(single(x, t.name, rotation ? "rotation" : "translation"));
+        for (const double x : v) values.push_back(single(x, where, rotation ? "rotation" : "translation"));
     };
     const std::size_t n = times.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -180,9 +203,13 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_trac
             }
         } else {
             const vec3& p = t.translations[i];
-            if (how == method::cubicspline) put({t.translation_splines[i].translation_in.x, t.translation_splines[i].translation_in.y, t.translation_splines[i].translation_in.z});
+            if (how == method::cubicspline)
+                put({t.translation_splines[i].translation_in.x, t.translation_splines[i].translation_in.y,
+                     t.translation_splines[i].translation_in.z});
             put({p.x, p.y, p.z});
-            if (how == method::cubicspline) put({t.translation_splines[i].translation_out.x, t.translation_splines[i].translation_out.y, t.translation_splines[i].translation_out.z});
+            if (how == method::cubicspline)
+                put({t.translation_splines[i].translation_out.x, t.translation_splines[i].translation_out.y,
+                     t.translation_splines[i].translation_out.z});
         }
     }
     gltf_json sampler = gltf_json::object();
@@ -216,7 +243,8 @@ gltf_json new_file(const std::vector<gltf_track>& tracks, buffer_builder& b, glt
         json["scenes"][0]["nodes"].push_back(i);
         animation["channels"].push_back(channel(add_sampler(b, animation, tracks[i], true, inputs), i, "rotation"));
         if (!tracks[i].translations.empty())
-            animation["channels"].push_back(channel(add_sampler(b, animation, tracks[i], false, inputs), i, "translation"));
+            animation["channels"].push_back(
+                channel(add_sampler(b, animation, tracks[i], false, inputs), i, "translation"));
     }
     return animation;
 }
@@ -227,9 +255,10 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
     gltf_file& file = source.file;
     for (const auto& name : json.value("extensionsUsed", gltf_json::array()))
         if (!name.is_string() || !renumbered_or_harmless.contains(name.get<std::string>()))
-            throw input_error(file.source, fmt::format("extensionsUsed: {} may refer to data keyrot would move: expected "
-                                                       "a file without it, or output in another format",
-                                                       excerpt(name.dump())));
+            throw input_error(file.source,
+                              fmt::format("extensionsUsed: {} may refer to data keyrot would move: expected "
+                                          "a file without it, or output in another format",
+                                          excerpt(name.dump())));
     // Replaced channels: (animation, channel) -> (track, rotation?).
     std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, bool>> replaced;
     for (std::size_t i = 0; i < tracks.size(); ++i) {
@@ -247,10 +276,12 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
         std::vector<bool> keep(anim["samplers"].size(), false);
         for (std::size_t c = 0; c < anim["channels"].size(); ++c) {
             if (replaced.contains({a, c})) continue;
-            const gltf_json& sampler = anim["channels"][c]["sampler"];  // (the reader checked each channel is an object)
+            const gltf_json& sampler =
+                anim["channels"][c]["sampler"];  // (the reader checked each channel is an object)
             if (!sampler.is_number_unsigned() || sampler.get<std::size_t>() >= keep.size())
-                throw input_error(fmt::format("{}: animations[{}].channels[{}].sampler", file.source, a, c),
-                                  fmt::format("{}: expected an index into animations[{}].samplers", excerpt(sampler.dump()), a));
+                throw input_error(
+                    fmt::format("{}: animations[{}].channels[{}].sampler", file.source, a, c),
+                    fmt::format("{}: expected an index into animations[{}].samplers", excerpt(sampler.dump()), a));
             keep[sampler.get<std::size_t>()] = true;
             ++kept_channels;
         }
@@ -268,15 +299,18 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
             }
         }
         for (std::size_t c = 0; c < anim["channels"].size(); ++c)
-            if (!replaced.contains({a, c})) anim["channels"][c]["sampler"] = renumbered[anim["channels"][c]["sampler"].get<std::size_t>()];
+            if (!replaced.contains({a, c}))
+                anim["channels"][c]["sampler"] = renumbered[anim["channels"][c]["sampler"].get<std::size_t>()];
         anim["samplers"] = std::move(samplers);
     }
     if (kept_channels)
-        warn.once("gltf-kept", fmt::format("{} channel{} keyrot does not interpolate (weights, scale) kept as {} were",
-                                           kept_channels, kept_channels == 1 ? "" : "s", kept_channels == 1 ? "it" : "they"));
+        warn.once("gltf-kept",
+                  fmt::format("{} channel{} keyrot does not interpolate (weights, scale) kept as {} were",
+                              kept_channels, kept_channels == 1 ? "" : "s", kept_channels == 1 ? "it" : "they"));
     // An accessor still referred to stays (another sampler, a mesh may share it).
     accessor_refs(json, [&](gltf_json& ref) {
-        if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_accessor.size()) dropped_accessor[ref.get<std::size_t>()] = false;
+        if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_accessor.size())
+            dropped_accessor[ref.get<std::size_t>()] = false;
     });
     std::vector<bool> keep_accessor(dropped_accessor.size());
     for (std::size_t i = 0; i < keep_accessor.size(); ++i) keep_accessor[i] = !dropped_accessor[i];
@@ -286,12 +320,14 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
         if (dropped_accessor[i]) {
             gltf_json one = {{"accessors", gltf_json::array({json["accessors"][i]})}};
             view_refs(one, [&](gltf_json& ref) {
-                if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_view.size()) dropped_view[ref.get<std::size_t>()] = true;
+                if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_view.size())
+                    dropped_view[ref.get<std::size_t>()] = true;
             });
         }
     compact(json, "accessors", keep_accessor, [](gltf_json& j, auto&& f) { accessor_refs(j, f); });
     view_refs(json, [&](gltf_json& ref) {
-        if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_view.size()) dropped_view[ref.get<std::size_t>()] = false;
+        if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_view.size())
+            dropped_view[ref.get<std::size_t>()] = false;
     });
     std::vector<bool> keep_view(dropped_view.size());
     for (std::size_t i = 0; i < keep_view.size(); ++i) keep_view[i] = !dropped_view[i];
@@ -301,14 +337,15 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
     json.erase("bufferViews");
     for (std::size_t v = 0; v < views.size(); ++v) {
         const std::string where = fmt::format("{}: bufferViews[{}]", file.source, v);
-        if (!views[v].is_object() || !views[v].contains("buffer")) throw input_error(where, "expected an object with a buffer");
+        if (!views[v].is_object() || !views[v].contains("buffer"))
+            throw input_error(where, "expected an object with a buffer");
         const std::size_t buffer = index_into(file, views[v]["buffer"], "buffers", where);
         const std::string_view bytes = buffer_bytes(file, buffer);
         const std::size_t offset = unsigned_member(views[v], "byteOffset", 0, where);
         const std::size_t length = unsigned_member(views[v], "byteLength", 0, where);
         if (offset > bytes.size() || length > bytes.size() - offset)
-            throw input_error(where, fmt::format("bytes {} to {} read past the end of buffer {}", offset, offset + length,
-                                                 buffer));
+            throw input_error(
+                where, fmt::format("bytes {} to {} read past the end of buffer {}", offset, offset + length, buffer));
         // At the same offset modulo 4, so that the accessors in it stay aligned.
         gltf_json& view = json["bufferViews"][b.view(bytes.substr(offset, length), offset % 4)];
         const gltf_json placed = view["byteOffset"];
@@ -328,7 +365,8 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
 
 /// Relative image URIs of the input, made relative to where the output goes.
 void move_image_uris(gltf_json& json, const std::string& from_directory, const std::optional<std::string>& target) {
-    const std::filesystem::path to = target ? std::filesystem::absolute(*target).parent_path() : std::filesystem::current_path();
+    const std::filesystem::path to =
+        target ? std::filesystem::absolute(*target).parent_path() : std::filesystem::current_path();
     at_path(json, {"images", "*", "uri"}, [&](gltf_json& uri) {
         if (!uri.is_string()) return;
         const std::string u = uri;
@@ -364,7 +402,9 @@ std::string base64(std::string_view bytes) {
     std::string out;
     out.reserve((bytes.size() + 2) / 3 * 4);
     for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        const auto byte = [&](std::size_t j) { return j < bytes.size() ? std::uint32_t{static_cast<unsigned char>(bytes[j])} : 0u; };
+        const auto byte = [&](std::size_t j) {
+            return j < bytes.size() ? std::uint32_t{static_cast<unsigned char>(bytes[j])} : 0u;
+        };
         const std::uint32_t v = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
         out += digits[v >> 18 & 63];
         out += digits[v >> 12 & 63];
@@ -416,13 +456,15 @@ std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std:
 void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, format f,
                 const std::optional<std::string>& target, std::ostream& out, warnings& warn) {
     gltf_json json = source ? source->file.json : gltf_json::object();
-    buffer_builder b(json);
+    buffer_builder b(json, warn.source());
     gltf_json buffer = gltf_json::object();
     if (source) {
-        if (const auto& buffers = top_array(source->file, "buffers"); !buffers.empty() && buffers[0].is_object()) buffer = buffers[0];
+        if (const auto& buffers = top_array(source->file, "buffers"); !buffers.empty() && buffers[0].is_object())
+            buffer = buffers[0];
         try {
             rewrite(tracks, *source, b, json, warn);
-        } catch (const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
+        } catch (
+            const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
             throw input_error(source->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
         }
         move_image_uris(json, source->file.directory, target);
@@ -434,8 +476,10 @@ void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, form
     json["buffers"] = gltf_json::array({buffer});
     if (f == format::glb) {
         const std::string bytes = glb_bytes(json.dump(), std::move(b.bytes));
-        if (target) write_file_atomically(*target, bytes);
-        else write_to_stream(out, bytes);
+        if (target)
+            write_file_atomically(*target, bytes);
+        else
+            write_to_stream(out, bytes);
         return;
     }
     if (!target) {

@@ -19,7 +19,7 @@ struct gltf_track {
     track_interpolation how;  ///< slerp is written LINEAR, step STEP, cubicspline CUBICSPLINE
     std::vector<double> times;
     std::vector<quat> rotations;
-    std::vector<spline_key> splines;  ///< CUBICSPLINE: one per row
+    std::vector<spline_key> splines;        ///< CUBICSPLINE: one per row
     std::vector<double> translation_times;  ///< the rows that have a translation
     std::vector<vec3> translations;
     std::vector<spline_key> translation_splines;  ///< CUBICSPLINE translations: one per translation

@@ -23,8 +23,7 @@ void set_stdin(const char* bytes, std::size_t size) {
         keyrot::fuzz::require(fd >= 0 && ::dup2(fd, STDIN_FILENO) == STDIN_FILENO);
         return fd;
     }();
-    keyrot::fuzz::require(::ftruncate(input, 0) == 0 &&
-                          ::pwrite(input, bytes, size, 0) == static_cast<ssize_t>(size) &&
+    keyrot::fuzz::require(::ftruncate(input, 0) == 0 && ::pwrite(input, bytes, size, 0) == static_cast<ssize_t>(size) &&
                           ::lseek(input, 0, SEEK_SET) == 0);
     std::cin.clear();
 }
