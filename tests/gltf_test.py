@@ -646,6 +646,13 @@ def bad_cases(work):
 
 def check_bad(work):
     global checks
+    # A .gltf and its .bin go in place together, or neither does.
+    bad_pair = os.path.join(work, "pair.gltf")
+    status, _, _ = run(["resample", "-", "--from", "glb", "-o", bad_pair], stdin=b"glTx")
+    if status != 2 or os.path.exists(bad_pair) or os.path.exists(os.path.join(work, "pair.bin")):
+        fail(f"a bad input into {bad_pair}: status {status}, or a file written")
+    else:
+        checks += 1
     # A translation a 32-bit float cannot hold, into glTF.
     big = os.path.join(work, "big.csv")
     with open(big, "w") as f:
