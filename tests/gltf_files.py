@@ -52,9 +52,17 @@ class Builder:
         self.json["bufferViews"].append(view)
         return len(self.json["bufferViews"]) - 1
 
-    def accessor(self, values, component=FLOAT, stride=None, minmax=False):
-        """`values` (n x width, or n) stored as `component` (normalised when an integer type)."""
+    def accessor(self, values, component=FLOAT, stride=None, minmax=False, sparse_every=None):
+        """`values` (n x width, or n) stored as `component` (normalised when an integer type).
+        sparse_every: every that many elements is stored as a sparse substitute (UNSIGNED_SHORT
+        indices), the bufferView holding the first element in its place."""
         values = np.asarray(values, dtype=np.float64)
+        substitutes = None
+        if sparse_every:
+            indices = np.arange(0, len(values), sparse_every)
+            substitutes = (indices, values[indices].copy())
+            values = values.copy()
+            values[indices] = values[0]
         width = 1 if values.ndim == 1 else values.shape[1]
         stored = values.astype(np.float32) if component == FLOAT else quantize(values, component)
         row = stored.reshape(len(values), width).astype(NUMPY_TYPE[component]).tobytes()
@@ -72,6 +80,13 @@ class Builder:
             decoded = dequantize(stored.reshape(len(values), width), component)
             acc["min"] = [float(v) for v in decoded.min(axis=0)]
             acc["max"] = [float(v) for v in decoded.max(axis=0)]
+        if substitutes is not None:
+            indices, replaced = substitutes
+            sub = replaced.astype(np.float32) if component == FLOAT else quantize(replaced, component)
+            acc["sparse"] = {"count": len(indices),
+                             "indices": {"bufferView": self.view(indices.astype("<u2").tobytes()),
+                                         "componentType": UNSIGNED_SHORT},
+                             "values": {"bufferView": self.view(sub.astype(NUMPY_TYPE[component]).tobytes())}}
         self.json["accessors"].append(acc)
         return len(self.json["accessors"]) - 1
 
@@ -115,7 +130,8 @@ class Builder:
         for c in channels:
             values = np.asarray(c["values"], dtype=float)
             width = values.shape[-1]
-            out = self.accessor(values.reshape(-1, width), c.get("component", FLOAT), c.get("stride"))
+            out = self.accessor(values.reshape(-1, width), c.get("component", FLOAT), c.get("stride"),
+                                sparse_every=c.get("sparse_every"))
             anim["samplers"].append({"input": self.accessor(c["times"]), "output": out,
                                      "interpolation": c.get("interpolation", "LINEAR")})
             anim["channels"].append({"sampler": len(anim["samplers"]) - 1, "target": {"node": c["node"], "path": c["path"]}})

@@ -120,10 +120,12 @@ class Case:
         self.b = G.Builder()
         self.tracks = {}  # track name -> {"rotation": (times, values, interp), "translation": ..., "rest": xyzw}
 
-    def channel(self, track, node, path, times, values, interp="LINEAR", component=G.FLOAT, stride=None):
+    def channel(self, track, node, path, times, values, interp="LINEAR", component=G.FLOAT, stride=None,
+                sparse_every=None):
         """Adds a channel; the reference keeps the values as a reader decodes them."""
         self.pending.append({"node": node, "path": path, "times": times, "values": values,
-                             "interpolation": interp, "component": component, "stride": stride})
+                             "interpolation": interp, "component": component, "stride": stride,
+                             "sparse_every": sparse_every})
         decoded_times = self.b.decoded(times)
         decoded = self.b.decoded(np.asarray(values, dtype=float), component)
         self.tracks.setdefault(track, {})[path] = (list(decoded_times), decoded, interp)
@@ -201,7 +203,8 @@ def make_cases(work):
     c.end()
     cases.append((c, "datauri"))
 
-    # Normalised SHORT and BYTE rotations, interleaved (byteStride) outputs, keys 180 degrees apart.
+    # Normalised SHORT and BYTE rotations, interleaved (byteStride) outputs (which the specification does not
+    # allow for animation samplers, and keyrot reads all the same), sparse substitutes, keys 180 degrees apart.
     c = Case("quantised.glb")
     c.b.skeleton(20)
     c.begin()
@@ -211,7 +214,8 @@ def make_cases(work):
             half = math.radians(90 if j == 0 else 89.75)
             q = np.array([[0, 0, math.sin(k * half), math.cos(k * half)] for k in range(16)])
         component = [G.SHORT, G.BYTE, G.FLOAT][j % 3]
-        c.channel(f"joint{j}", j, "rotation", key_times(rng, 16), q, component=component, stride=[None, 12, 20][j % 3])
+        c.channel(f"joint{j}", j, "rotation", key_times(rng, 16), q, component=component, stride=[None, 12, 20][j % 3],
+                  sparse_every=3 if j % 4 == 1 else None)  # sparse substitutes, interleaved or not
     c.end()
     cases.append((c, "glb"))
 
