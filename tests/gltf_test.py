@@ -454,6 +454,10 @@ def check_gltf_output(case, fps, how, written):
     if meshes_by_content(din, bin_in) != meshes_by_content(dout, bin_out):
         fail(f"{out}: meshes or skins (or their accessors' bytes) not kept")
         return
+    times_min = [dout["accessors"][s["input"]]["min"][0] for a in dout["animations"] for s in a["samplers"]]
+    if any(m == 0 and math.copysign(1, m) < 0 for m in times_min):
+        fail(f"{out}: a time of -0")
+        return
     used = sum(v["byteLength"] + 3 for v in dout["bufferViews"])
     if len(bin_out) > used:
         fail(f"{out}: {len(bin_out)} bytes of buffer, {used} in its bufferViews: old animation data left behind")

@@ -51,7 +51,8 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
 void track_resampler::add(const key& k) {
     if (!started_) {
         started_ = true;
-        next_frame_ = std::ceil(k.time * opts_.fps - tolerance_frames(k.time, opts_));
+        // (+ 0: the ceiling of a time just below 0 is -0, which a glTF file would keep)
+        next_frame_ = std::ceil(k.time * opts_.fps - tolerance_frames(k.time, opts_)) + 0.0;
     }
     if (k.translation) {
         const spline_key spline = k.spline.value_or(spline_key{});
