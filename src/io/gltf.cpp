@@ -272,8 +272,8 @@ private:
         rotation_ = read(o.rotation, 4);
         translation_ = read(o.translation, 3);
         times_.clear();
-        for (const auto& c : {rotation_, translation_})
-            if (c) times_.insert(times_.end(), c->times.begin(), c->times.end());
+        for (const std::optional<channel_curve>* c : {&rotation_, &translation_})
+            if (*c) times_.insert(times_.end(), (*c)->times.begin(), (*c)->times.end());
         std::sort(times_.begin(), times_.end());
         times_.erase(std::unique(times_.begin(), times_.end()), times_.end());
         spline_ = (rotation_ && rotation_->how == method::cubicspline) ||
