@@ -63,24 +63,6 @@ std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::str
     return {json, bin};
 }
 
-/// Extensions that change nothing keyrot reads or writes of an animation:
-/// a file that requires any other is refused.
-const std::set<std::string, std::less<>> harmless_required = {"KHR_materials_clearcoat",
-                                                              "KHR_materials_emissive_strength",
-                                                              "KHR_materials_ior",
-                                                              "KHR_materials_iridescence",
-                                                              "KHR_materials_sheen",
-                                                              "KHR_materials_specular",
-                                                              "KHR_materials_transmission",
-                                                              "KHR_materials_unlit",
-                                                              "KHR_materials_variants",
-                                                              "KHR_materials_volume",
-                                                              "KHR_mesh_quantization",
-                                                              "KHR_texture_basisu",
-                                                              "KHR_texture_transform",
-                                                              "KHR_lights_punctual",
-                                                              "EXT_texture_webp"};
-
 void check_header(const gltf_json& json, const std::string& source) {
     if (!json.is_object()) throw input_error(source, "expected a glTF JSON object");
     const auto asset = json.find("asset");
@@ -92,8 +74,7 @@ void check_header(const gltf_json& json, const std::string& source) {
         throw input_error(source, fmt::format("asset.version: glTF {}: expected 2.0", excerpt(version)));
     if (const auto required = json.find("extensionsRequired"); required != json.end() && required->is_array())
         for (std::size_t i = 0; i < required->size(); ++i)
-            if (const auto& name = (*required)[i];
-                !name.is_string() || !harmless_required.contains(name.get<std::string>()))
+            if (const auto& name = (*required)[i]; !name.is_string() || !harmless_extension(name.get<std::string>()))
                 throw input_error(source, fmt::format("extensionsRequired[{}]: {} changes what keyrot reads: expected "
                                                       "a file without it (decompress it first)",
                                                       i, excerpt(name.dump())));
@@ -275,6 +256,27 @@ std::string string_member(const gltf_json& object, const char* name, std::string
     if (it == object.end()) return std::string(fallback);
     if (!it->is_string()) throw input_error(at, fmt::format("{}: expected a string", name));
     return *it;
+}
+
+/// Extensions that change nothing keyrot reads or writes of an animation:
+/// a file that requires any other is refused.
+bool harmless_extension(std::string_view name) {
+    static const std::set<std::string, std::less<>> harmless = {"KHR_materials_clearcoat",
+                                                                "KHR_materials_emissive_strength",
+                                                                "KHR_materials_ior",
+                                                                "KHR_materials_iridescence",
+                                                                "KHR_materials_sheen",
+                                                                "KHR_materials_specular",
+                                                                "KHR_materials_transmission",
+                                                                "KHR_materials_unlit",
+                                                                "KHR_materials_variants",
+                                                                "KHR_materials_volume",
+                                                                "KHR_mesh_quantization",
+                                                                "KHR_texture_basisu",
+                                                                "KHR_texture_transform",
+                                                                "KHR_lights_punctual",
+                                                                "EXT_texture_webp"};
+    return harmless.contains(name);
 }
 
 const gltf_json& top_array(const gltf_file& file, const char* name) {

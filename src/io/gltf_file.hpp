@@ -53,6 +53,11 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
 /// first use. Precondition: i indexes buffers.
 std::string_view buffer_bytes(gltf_file& file, std::size_t i);
 
+/// An extension that changes nothing keyrot reads or writes of an
+/// animation (a material's, a texture's, a light's): a file that requires
+/// any other is refused.
+bool harmless_extension(std::string_view name);
+
 /// The array `name` of the file's JSON ("nodes"), empty when there is none.
 const gltf_json& top_array(const gltf_file& file, const char* name);
 

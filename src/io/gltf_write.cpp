@@ -14,33 +14,19 @@ namespace keyrot {
 namespace {
 
 /// Extensions whose references to accessors and bufferViews this writer
-/// renumbers, or which hold none: a file that uses any other is not
-/// rewritten, since an index it holds could come to name the wrong data.
-const std::set<std::string, std::less<>> renumbered_or_harmless = {"EXT_lights_image_based",
-                                                                   "EXT_mesh_gpu_instancing",
-                                                                   "EXT_texture_webp",
-                                                                   "KHR_animation_pointer",
-                                                                   "KHR_draco_mesh_compression",
-                                                                   "KHR_lights_punctual",
-                                                                   "KHR_materials_anisotropy",
-                                                                   "KHR_materials_clearcoat",
-                                                                   "KHR_materials_dispersion",
-                                                                   "KHR_materials_emissive_strength",
-                                                                   "KHR_materials_ior",
-                                                                   "KHR_materials_iridescence",
-                                                                   "KHR_materials_pbrSpecularGlossiness",
-                                                                   "KHR_materials_sheen",
-                                                                   "KHR_materials_specular",
-                                                                   "KHR_materials_transmission",
-                                                                   "KHR_materials_unlit",
-                                                                   "KHR_materials_variants",
-                                                                   "KHR_materials_volume",
-                                                                   "KHR_mesh_quantization",
-                                                                   "KHR_texture_basisu",
-                                                                   "KHR_texture_transform",
-                                                                   "KHR_xmp_json_ld",
-                                                                   "MSFT_lod",
-                                                                   "MSFT_texture_dds"};
+/// renumbers, or which hold none, beyond harmless_extension's: a file that
+/// uses any other is not rewritten, since an index it holds could come to
+/// name the wrong data.
+const std::set<std::string, std::less<>> renumbered_extensions = {"EXT_lights_image_based",
+                                                                  "EXT_mesh_gpu_instancing",
+                                                                  "KHR_animation_pointer",
+                                                                  "KHR_draco_mesh_compression",
+                                                                  "KHR_materials_anisotropy",
+                                                                  "KHR_materials_dispersion",
+                                                                  "KHR_materials_pbrSpecularGlossiness",
+                                                                  "KHR_xmp_json_ld",
+                                                                  "MSFT_lod",
+                                                                  "MSFT_texture_dds"};
 
 /// Calls f on each member of `j` at `path` (names; "*" for every element
 /// or member) that exists.
@@ -254,7 +240,8 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
              warnings& warn) {
     gltf_file& file = source.file;
     for (const auto& name : json.value("extensionsUsed", gltf_json::array()))
-        if (!name.is_string() || !renumbered_or_harmless.contains(name.get<std::string>()))
+        if (!name.is_string() ||
+            !(harmless_extension(name.get<std::string>()) || renumbered_extensions.contains(name.get<std::string>())))
             throw input_error(file.source,
                               fmt::format("extensionsUsed: {} may refer to data keyrot would move: expected "
                                           "a file without it, or output in another format",
