@@ -35,19 +35,21 @@ std::string formats_help() {
         out += '\n';
     }
     out += fmt::format("Beside them: time or frame (at --key-fps); track (optional, names the track); {} (optional "
-                       "translation).\n",
-                       fmt::join(translation_columns, ","));
+                       "translation);\n{} (optional scale).\n",
+                       fmt::join(translation_columns, ","), fmt::join(scale_columns, ","));
     out += "\nJSON: a document {\"keys\": [KEY, ...]}, a bare array [KEY, ...], or {\"tracks\": {\"NAME\": {\"keys\": [...]}, "
            "...}}.\nOptional document (or track) fields: \"angles\": \"degrees\" | \"radians\", \"euler\": \"ZYX\", "
            "\"quat_order\":\n\"wxyz\" | \"xyzw\", \"fps\" (the rate of \"frame\"). A KEY holds \"time\" or \"frame\", "
-           "one rotation, and optionally\n\"translation\": [x, y, z]. The rotation's fields, by representation:\n";
+           "one rotation, and optionally\n\"translation\": [x, y, z] and \"scale\": [x, y, z]. The rotation's fields, by "
+           "representation:\n";
     for (const auto& [r, fields] : json_fields) out += fmt::format("  {:<12}{}\n", to_string(r), fields);
     out += "\nNDJSON: one KEY object per line, with \"track\" when there are tracks; a first line without a rotation\n"
            "holds the settings, as keyrot writes it.\n"
            "\nglTF 2.0 (.gltf with its buffers, or .glb): each node an animation moves is a track named after it\n"
-           "(\"<animation>/<node>\" when there are several animations; --animation picks one), its rotation and\n"
-           "translation channels interpolated as their samplers say (LINEAR, STEP, CUBICSPLINE). A glTF output of a\n"
-           "glTF input is that file with its samplers replaced; of any other input, a new file with a node per track.\n"
+           "(\"<animation>/<node>\" when there are several animations; --animation picks one), its rotation,\n"
+           "translation and scale channels interpolated as their samplers say (LINEAR, STEP, CUBICSPLINE). A glTF\n"
+           "output of a glTF input is that file with its samplers replaced; of any other input, a new file with a\n"
+           "node per track.\n"
            "\nA file's format is known by its extension (.csv, .json, .ndjson or .jsonl, .gltf, .glb), else by its\n"
            "content.\n"
            "keyrot reads all it writes: a JSON document with \"frames\" in place of \"keys\", and \"# keyrot {...}\" "

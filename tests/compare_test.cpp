@@ -71,6 +71,14 @@ TEST_CASE("tracks are matched by name; translations are checked when expected") 
     CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {at(0, quat{})})}, {}).rows[0].problem ==
           "translation missing from ACTUAL");
     CHECK(compare_tracks({named("hip", {with_t})}, {named("knee", {with_t})}, {}).failed == 2);
+    key scaled = with_t, rescaled = with_t;
+    scaled.scale = vec3{1, 1, 1};
+    rescaled.scale = vec3{1, 1, 1.01};
+    CHECK(compare_tracks({named("hip", {scaled})}, {named("hip", {rescaled})}, {}).rows[0].problem ==
+          "scale differs by 0.01 (tolerance 0.001)");
+    CHECK(compare_tracks({named("hip", {scaled})}, {named("hip", {with_t})}, {}).rows[0].problem ==
+          "scale missing from ACTUAL");
+    CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {rescaled})}, {}).failed == 0);
     const quat turned = exp(vec3{0, 0, 0.5});
     const auto reordered = compare_tracks({named("hip", {with_t}), named("knee", {at(0, turned)})},
                                           {named("knee", {at(0, turned)}), named("hip", {with_t})}, {});

@@ -55,6 +55,22 @@ TEST_CASE("CSV: tracks in order of first appearance, translations optional per k
     CHECK(doc.tracks[1].name == "a");
 }
 
+TEST_CASE("CSV: scale columns sx sy sz, optional per key, beside a 4x4 matrix too") {
+    const auto doc = read("time,qw,qx,qy,qz,sx,sy,sz\n0,1,0,0,0,1,2,3\n1,1,0,0,0,,,\n", format::csv);
+    CHECK(doc.tracks[0].keys[0].scale->y == 2);
+    CHECK_FALSE(doc.tracks[0].keys[0].translation);
+    CHECK_FALSE(doc.tracks[0].keys[1].scale);
+    const auto m4 = read("time,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33,sx,sy,sz\n"
+                         "0,1,0,0,4,0,1,0,5,0,0,1,6,0,0,0,1,2,2,2\n",
+                         format::csv);
+    CHECK(m4.tracks[0].keys[0].translation->x == 4);
+    CHECK(m4.tracks[0].keys[0].scale->z == 2);
+    CHECK(error_of("time,qw,qx,qy,qz,sx,sy\n0,1,0,0,0,1,1\n", format::csv) ==
+          "in:1: scale needs all of the columns sx sy sz");
+    CHECK(error_of("time,qw,qx,qy,qz,sx,sy,sz\n0,1,0,0,0,1,,1\n", format::csv) ==
+          "in:2: columns sx sy sz: expected three numbers or three empty cells");
+}
+
 TEST_CASE("CSV: every representation's columns") {
     CHECK(read_keys("time,ax,ay,az,angle\n0,0,0,1,90\n", format::csv)[0].second.kind == rep::axis_angle);
     CHECK(read("time,e1,e2,e3\n0,1,2,3\n", format::csv).tracks[0].keys[0].given_as == rep::euler);
@@ -118,7 +134,7 @@ TEST_CASE("CSV: a plain row reads as the same row read cell by cell") {
     };
     const std::vector<std::string> names = {"hip", "left knee", "a.b-c_d(1)", "x"};
     for (const std::string header :
-         {"time,qw,qx,qy,qz", "qz,QX,frame,qy,qw,time", "time,rx,ry,rz,tx,ty,tz", "track,time,qw,qx,qy,qz",
+         {"time,qw,qx,qy,qz", "qz,QX,frame,qy,qw,time", "time,rx,ry,rz,tx,ty,tz", "sy,time,sx,rx,ry,rz,tx,ty,tz,sz", "track,time,qw,qx,qy,qz",
           "time,e1,e2,e3,track,frame", "frame,m00,m01,m02,m03,m10,m11,m12,m13,m20,m21,m22,m23,m30,m31,m32,m33"}) {
         CAPTURE(header);
         const auto cells = static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
@@ -155,6 +171,8 @@ TEST_CASE("CSV: a plain row reads as the same row read cell by cell") {
                 CHECK(std::memcmp(a.values.data(), b.values.data(), sizeof a.values) == 0);
                 CHECK(a.translation.has_value() == b.translation.has_value());
                 if (a.translation) CHECK(std::memcmp(&*a.translation, &*b.translation, sizeof(vec3)) == 0);
+                CHECK(a.scale.has_value() == b.scale.has_value());
+                if (a.scale) CHECK(std::memcmp(&*a.scale, &*b.scale, sizeof(vec3)) == 0);
             }
         }
     }

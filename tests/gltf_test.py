@@ -4,7 +4,7 @@
 Generated files (skinned skeletons of 20 to 60 joints; LINEAR, STEP and
 CUBICSPLINE samplers; float and normalised-integer rotations; interleaved
 bufferViews; sparse accessors; a first key after 0 s; keys 180 degrees
-apart; w < 0; rotation and translation keyed at different times; several
+apart; w < 0; rotation, translation and scale keyed at different times; several
 animations) as .glb, .gltf with a .bin, .gltf with a data: URI, and .glb on
 standard input. keyrot's resampled frames are compared with the sampler
 semantics written out here: scipy's Slerp for LINEAR rotations, the Hermite
@@ -171,6 +171,7 @@ def make_cases(work):
     for j in range(30):
         c.channel(f"joint{j}", j, "rotation", t, random_quats(rng, 40, 0.3))
     c.channel("joint0", 0, "translation", t, rng.normal(size=(40, 3)))
+    c.channel("joint1", 1, "scale", t, 1 + 0.2 * rng.normal(size=(40, 3)))
     c.end()
     # A morph target's weights, which keyrot keeps as they are.
     body = c.b.json["nodes"][-1]
@@ -200,6 +201,8 @@ def make_cases(work):
         c.channel(f"joint{j}", j, "rotation", t, cubic_values(rng, random_quats(rng, 10, 0.6)), "CUBICSPLINE")
         if j % 4 == 0:
             c.channel(f"joint{j}", j, "translation", t, cubic_values(rng, rng.normal(size=(10, 3))), "CUBICSPLINE")
+        if j % 4 == 1:
+            c.channel(f"joint{j}", j, "scale", t, cubic_values(rng, 1 + 0.2 * rng.normal(size=(10, 3))), "CUBICSPLINE")
     c.end()
     cases.append((c, "datauri"))
 
@@ -219,8 +222,8 @@ def make_cases(work):
     c.end()
     cases.append((c, "glb"))
 
-    # Rotation and translation keyed at different times (LINEAR and CUBICSPLINE), a
-    # translation-only node with a rest rotation, unnamed nodes.
+    # Rotation, translation and scale keyed at different times (LINEAR, STEP and CUBICSPLINE),
+    # translation-only and scale-only nodes with a rest rotation, unnamed nodes.
     c = Case("offset.glb")
     c.b.skeleton(20, names=False)
     c.b.json["nodes"][5]["rotation"] = [0.0, 0.6, 0.0, 0.8]
@@ -230,10 +233,15 @@ def make_cases(work):
     t1, t2 = key_times(rng, 9, 0.0), key_times(rng, 7, 0.3)
     c.channel("node1", 1, "rotation", t1, cubic_values(rng, random_quats(rng, 9, 0.7)), "CUBICSPLINE")
     c.channel("node1", 1, "translation", t2, cubic_values(rng, rng.normal(size=(7, 3))), "CUBICSPLINE")
+    c.channel("node1", 1, "scale", key_times(rng, 5, 0.1), 1 + 0.2 * rng.normal(size=(5, 3)))
     c.channel("node2", 2, "rotation", key_times(rng, 9, 0.5), random_quats(rng, 9, 0.7), "STEP")
     c.channel("node2", 2, "translation", key_times(rng, 6, 0.0), rng.normal(size=(6, 3)))
     c.channel("node5", 5, "translation", key_times(rng, 6, 0.0), rng.normal(size=(6, 3)))
     c.tracks["node5"]["rest"] = [0.0, 0.6, 0.0, 0.8]
+    c.channel("node3", 3, "rotation", key_times(rng, 7, 0.0), random_quats(rng, 7, 0.7))
+    c.channel("node3", 3, "scale", key_times(rng, 9, 0.25), 1 + 0.2 * rng.normal(size=(9, 3)), "STEP")
+    c.channel("node6", 6, "scale", key_times(rng, 6, 0.0), 1 + 0.2 * rng.normal(size=(6, 3)))
+    c.tracks["node6"]["rest"] = [0.0, 0.0, 0.0, 1.0]
     c.end()
     cases.append((c, "glb"))
 
@@ -261,9 +269,12 @@ def make_cases(work):
     return [case for case, _ in cases]
 
 
+VECTORS = {"translation": ("tx", "ty", "tz"), "scale": ("sx", "sy", "sz")}
+
+
 def expected_frames(track, fps):
-    """(frame, rotation xyzw, translation or None) on keyrot's grid for the track's key range."""
-    times = [x for ch in ("rotation", "translation") if ch in track for x in track[ch][0]]
+    """(frame, rotation xyzw, {translation/scale: value}) on keyrot's grid for the track's key range."""
+    times = [x for ch in ("rotation", "translation", "scale") if ch in track for x in track[ch][0]]
     first, last = min(times), max(times)
     frames = []
     keys = sorted(set(times))
@@ -276,11 +287,8 @@ def expected_frames(track, fps):
             q = curve_value(ts, vs, interp, t, True)
         else:
             q = np.array(track["rest"]) / np.linalg.norm(track["rest"])
-        p = None
-        if "translation" in track:
-            ts, vs, interp = track["translation"]
-            p = curve_value(ts, vs, interp, t, False)
-        frames.append((k, q, p))
+        vectors = {ch: curve_value(*track[ch], t, False) for ch in VECTORS if ch in track}
+        frames.append((k, q, vectors))
     return frames
 
 
@@ -310,17 +318,18 @@ def check_resample(case, fps, extra=(), stdin=None, animation=None):
             fail(f"{label}: track {name}: frames {got[0]['frame']}..{got[-1]['frame']}, expected "
                  f"{expected[0][0]}..{expected[-1][0]}")
             continue
-        for r, (k, q, p) in zip(got, expected):
+        for r, (k, q, vectors) in zip(got, expected):
             mine = [float(r["qx"]), float(r["qy"]), float(r["qz"]), float(r["qw"])]
             worst_rot = max(worst_rot, angle_deg(mine, q))
-            if p is not None:
-                if r["tx"] == "":
-                    fail(f"{label}: track {name} frame {k}: no translation")
+            for ch, p in vectors.items():
+                columns = VECTORS[ch]
+                if r[columns[0]] == "":
+                    fail(f"{label}: track {name} frame {k}: no {ch}")
                     break
-                worst_pos = max(worst_pos, float(np.max(np.abs(np.array([float(r["tx"]), float(r["ty"]), float(r["tz"])]) - p))))
+                worst_pos = max(worst_pos, float(np.max(np.abs(np.array([float(r[c]) for c in columns]) - p))))
     checks += 1
     if worst_rot > ROT_TOL_DEG or worst_pos > POS_TOL:
-        fail(f"{label}: largest difference {worst_rot:.3g} deg, {worst_pos:.3g} in translation")
+        fail(f"{label}: largest difference {worst_rot:.3g} deg, {worst_pos:.3g} in translation or scale")
     else:
         print(f"ok: {label}: {len(rows)} frames, within {worst_rot:.2g} deg and {worst_pos:.2g}")
 
@@ -410,11 +419,10 @@ def compare_frames(label, expected_text, actual_text, tol_deg):
         a = actual[k]
         q = lambda r: [float(r["qx"]), float(r["qy"]), float(r["qz"]), float(r["qw"])]
         worst = max(worst, angle_deg(q(a), q(e)))
-        if e.get("tx"):
-            for c in ("tx", "ty", "tz"):
-                if abs(float(a[c]) - float(e[c])) > 1e-6 * max(1.0, abs(float(e[c]))):
-                    fail(f"{label}: {k}: {c} {a[c]}, expected {e[c]}")
-                    return False
+        for c in VECTORS["translation"] + VECTORS["scale"]:
+            if e.get(c) and abs(float(a[c]) - float(e[c])) > 1e-6 * max(1.0, abs(float(e[c]))):
+                fail(f"{label}: {k}: {c} {a[c]}, expected {e[c]}")
+                return False
     if worst > tol_deg:
         fail(f"{label}: largest difference {worst:.3g} deg")
         return False
@@ -552,7 +560,7 @@ def check_step_output(case, work, written):
     status, _, err = run(["resample", case.path, "--method", "step", "-o", out])
     doc, _ = gltf_parts(out) if status == 0 else ({}, b"")
     if status != 0 or any(a["samplers"][c["sampler"]].get("interpolation") != "STEP" for a in doc["animations"]
-                          for c in a["channels"] if c["target"]["path"] in ("rotation", "translation")):
+                          for c in a["channels"] if c["target"]["path"] in ("rotation", "translation", "scale")):
         fail(f"{out}: --method step: expected STEP samplers ({err.strip()})")
         return
     written.append(out)

@@ -25,7 +25,7 @@ TEST_CASE("JSON: keys, tracks, quaternion order and objects, document fields") {
         {"time": 0, "quat": [0, 0, 1, 0]},
         {"time": 1, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}},
         {"frame": 48, "axis": [0, 0, 1], "angle": 1.5, "translation": [1, 2, 3]},
-        {"time": 3, "rotvec": [0, 1, 0]},
+        {"time": 3, "rotvec": [0, 1, 0], "scale": [1, 0.5, 2]},
         {"time": 4, "euler": [1, 2, 3]},
         {"time": 5, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]]}]})");
     const auto& t = doc.tracks[0];
@@ -36,6 +36,9 @@ TEST_CASE("JSON: keys, tracks, quaternion order and objects, document fields") {
     CHECK(t.keys[1].values[0] == 1);
     CHECK(*t.keys[2].frame == 48);
     CHECK(t.keys[2].translation->y == 2);
+    CHECK_FALSE(t.keys[2].scale);
+    CHECK(t.keys[3].scale->y == 0.5);
+    CHECK_FALSE(t.keys[3].translation);
     CHECK(t.keys[5].kind == rep::matrix);
     CHECK(t.keys[3].at.path == "keys[3]");
 
@@ -90,6 +93,8 @@ TEST_CASE("JSON errors name the field down to the element, as a JSON path") {
           "in: keys[0]: 'matrix[1][2]': expected a number, got string \"0\"");
     CHECK(field_error(R"({"time": 0, "matrix": [[1, 0, 0], [0, 1], [0, 0, 1]]})") ==
           "in: keys[0]: 'matrix[1]': expected an array of 3 numbers, got 2 elements");
+    CHECK(field_error(R"({"time": 0, "quat": [1, 0, 0, 0], "scale": [1, 1]})") ==
+          "in: keys[0]: 'scale': expected an array of 3 numbers, got 2 elements");
     CHECK(field_error(R"({"time": 0, "quat": [1, 0, 0, 0], "translation": [0, "1", 2]})") ==
           "in: keys[0]: 'translation[1]': expected a number, got string \"1\"");
     CHECK(field_error(R"({"frame": "3", "quat": [1, 0, 0, 0]})") == "in: keys[0]: 'frame': expected a number, got string \"3\"");
@@ -126,6 +131,7 @@ std::string dump(const std::string& text) {
                                    k.time.value_or(-1), k.frame.value_or(-1), static_cast<int>(k.kind),
                                    fmt::join(k.values, " "));
                 if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+                if (k.scale) out += fmt::format(" scale {} {} {}", k.scale->x, k.scale->y, k.scale->z);
                 out += '\n';
             }
         return out;
@@ -182,6 +188,7 @@ std::string key_line(const std::string& track, const key_settings& s, const raw_
                                    s.euler ? s.euler->name : "-", s.key_fps, k.at.path, k.time.value_or(-1),
                                    k.frame.value_or(-1), static_cast<int>(k.kind), fmt::join(k.values, " "));
     if (k.translation) line += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+    if (k.scale) line += fmt::format(" scale {} {} {}", k.scale->x, k.scale->y, k.scale->z);
     return line + '\n';
 }
 
@@ -301,9 +308,10 @@ TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-jso
         try {
             std::string out;
             for (const auto& [name, k] : keyrot::test::read_keys(text, format::ndjson))
-                out += fmt::format("{} {} {} {} {} [{}] {}\n", name, k.at.line, k.time.value_or(-1), k.frame.value_or(-1),
+                out += fmt::format("{} {} {} {} {} [{}] {} {}\n", name, k.at.line, k.time.value_or(-1), k.frame.value_or(-1),
                                    static_cast<int>(k.kind), fmt::join(k.values, " "),
-                                   k.translation ? fmt::format("{} {} {}", k.translation->x, k.translation->y, k.translation->z) : "");
+                                   k.translation ? fmt::format("{} {} {}", k.translation->x, k.translation->y, k.translation->z) : "",
+                                   k.scale ? fmt::format("{} {} {}", k.scale->x, k.scale->y, k.scale->z) : "");
             return out;
         } catch (const input_error& e) {
             return std::string(e.what());
@@ -313,6 +321,7 @@ TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-jso
     for (const std::string key : {
              R"("time": 0.5, "quat": [0.5, -0.5, 0.5, -0.5])", R"("frame": 3, "time": -0, "quat": {"w": 1, "x": 0, "y": -0, "z": 0})",
              R"("time": 1e-3, "axis": [0, 0, 1], "angle": 90, "translation": [1, -2.5, 3e2])",
+             R"("time": 1, "quat": [1, 0, 0, 0], "scale": [0.5, 2, -1e-3])",
              R"("time": 2, "rotvec": [0.1, 0.2, 0.3])", R"("time": 2, "euler": [10, 20, 30])",
              R"("time": 2, "matrix": [[1, 0, 0], [0, 1, 0], [0, 0, 1]])",
              R"("time": 2, "matrix": [[1, 0, 0, 5], [0, 1, 0, 6], [0, 0, 1, 7], [0, 0, 0, 1]])",

@@ -17,16 +17,17 @@ using namespace keyrot;
 
 namespace {
 
-/// Tracks of `rows` frames each, with and without translations.
+/// Tracks of `rows` frames each, with and without translations and scales.
 std::vector<std::vector<sample>> tracks_of(std::size_t count, std::size_t rows) {
     std::vector<std::vector<sample>> tracks(count);
     for (std::size_t t = 0; t < count; ++t)
         for (std::size_t i = 0; i < rows; ++i) {
             const double a = 0.001 * static_cast<double>(i + t);
-            std::optional<vec3> translation;
+            std::optional<vec3> translation, scale;
             if (t % 2 == 0) translation = vec3{a, -a, 1};
+            if (t % 3 == 0) scale = vec3{1 + a, 1, 1 - a};
             tracks[t].push_back({static_cast<double>(i) / 24, static_cast<double>(i),
-                                 quat{std::cos(a), 0, 0, std::sin(a)}, translation});
+                                 quat{std::cos(a), 0, 0, std::sin(a)}, translation, scale});
         }
     return tracks;
 }
@@ -38,7 +39,7 @@ std::string direct(format f, const table_info& info, const write_options& w, con
     warnings warn(err, "in");
     const auto writer = make_writer(f, out, info, w, warn);
     for (std::size_t t = 0; t < tracks.size(); ++t) {
-        writer->begin_track("track " + std::to_string(t), tracks[t].front().translation.has_value());
+        writer->begin_track("track " + std::to_string(t), channels{tracks[t].front().translation.has_value(), tracks[t].front().scale.has_value()});
         for (const sample& s : tracks[t]) writer->row(s);
     }
     writer->finish();
@@ -51,7 +52,7 @@ std::string through_table(format f, const std::optional<std::string>& path, cons
     warnings warn(err, "in");
     const auto table = open_table(f, path, out, info, w, warn);
     for (std::size_t t = 0; t < tracks.size(); ++t) {
-        table->begin_track("track " + std::to_string(t), tracks[t].front().translation.has_value(), track_interpolation{});
+        table->begin_track("track " + std::to_string(t), channels{tracks[t].front().translation.has_value(), tracks[t].front().scale.has_value()}, track_interpolation{});
         for (const sample& s : tracks[t]) table->row(s);
     }
     table->finish();
@@ -63,7 +64,7 @@ std::string through_table(format f, const std::optional<std::string>& path, cons
 TEST_CASE("open_table: the same bytes as the writer alone, small or large, to a stream or a file") {
     table_info info;
     info.named = true;
-    info.translation = true;
+    info.carried = {true, true};
     info.fps = 24;
     write_options w;
     w.representation = rep::quat;
@@ -91,7 +92,7 @@ TEST_CASE("open_table: a table never finished leaves no file, and its file is no
         std::ostringstream out, err;
         warnings warn(err, "in");
         const auto table = open_table(format::csv, path, out, table_info{}, write_options{}, warn);
-        table->begin_track("", false, track_interpolation{});
+        table->begin_track("", channels{}, track_interpolation{});
         const auto tracks = tracks_of(2, 50000);
         for (const sample& row : tracks[1]) table->row(row);  // (track 1: no translations)
     }  // an error before finish(): the table goes

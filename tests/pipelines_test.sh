@@ -26,8 +26,8 @@ expect_pass() {
 }
 
 # ---- every output, read back with no flags: each format, representation and unit
-printf 'track,time,qw,qx,qy,qz,tx,ty,tz\nhip,0,1,0,0,0,0,1,0\nhip,0.5,0.5,0.5,0.5,0.5,1,1,0\nhip,1,0,0.6,0,0.8,2,1,0
-knee,0,0.9,0.1,0.3,0.3,,,\nknee,1,0.5,-0.5,0.5,0.5,,,\n' > walk.csv
+printf 'track,time,qw,qx,qy,qz,tx,ty,tz,sx,sy,sz\nhip,0,1,0,0,0,0,1,0,,,\nhip,0.5,0.5,0.5,0.5,0.5,1,1,0,1,2,3
+hip,1,0,0.6,0,0.8,2,1,0,1,1,1\nknee,0,0.9,0.1,0.3,0.3,,,,0.5,0.5,0.5\nknee,1,0.5,-0.5,0.5,0.5,,,,,,\n' > walk.csv
 "$keyrot" resample walk.csv --fps 10 --rep quat > direct.csv
 for to in csv json ndjson; do
     for rep in quat axis-angle rotvec euler matrix matrix4; do

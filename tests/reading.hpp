@@ -113,7 +113,7 @@ inline std::string write(format f, const table_info& info, const write_options& 
     std::ostringstream err;
     warnings warn(err, "in");
     auto writer = make_writer(f, out, info, w, warn);
-    writer->begin_track(track, rows.front().translation.has_value());
+    writer->begin_track(track, channels{rows.front().translation.has_value(), rows.front().scale.has_value()});
     for (const sample& s : rows) writer->row(s);
     writer->finish();
     return out;

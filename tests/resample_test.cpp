@@ -120,12 +120,33 @@ TEST_CASE("translation channel: linear between its own keys, held outside them")
     CHECK_FALSE(run(keys_at({{0, quat{}}, {1, quat{}}}))[3].translation);
 }
 
+TEST_CASE("scale channel: its own keys, apart from the translation's, interpolated as the file says") {
+    track t = keys_at({{0, quat{}}, {1, quat{}}, {2, quat{}}, {3, quat{}}});
+    t.keys[0].translation = vec3{1, 1, 1};
+    t.keys[3].translation = vec3{4, 4, 4};
+    t.keys[1].scale = vec3{1, 2, 4};
+    t.keys[2].scale = vec3{3, 2, 0};
+    const auto out = run(t, {4, method::slerp, path::shortest});
+    REQUIRE(out.size() == 13);
+    CHECK(out[0].scale->y == 2);     // before the first scale key: held
+    CHECK(out[6].scale->x == 2);     // t = 1.5: halfway
+    CHECK(out[5].scale->z == 3);     // t = 1.25
+    CHECK(out[12].scale->x == 3);    // after the last: held
+    CHECK(out[6].translation->x == 2.5);  // the translation on its own keys meanwhile
+    resample_options stepped_scale{4, method::slerp, path::shortest};
+    stepped_scale.scale_how = method::step;
+    const auto stepped = run(t, stepped_scale);
+    CHECK(stepped[7].scale->x == 1);  // t = 1.75, held from t = 1
+    CHECK(stepped[7].translation->x == 2.75);  // still linear
+    CHECK_FALSE(run(keys_at({{0, quat{}}, {1, quat{}}}))[3].scale);
+}
+
 TEST_CASE("streaming: frames come out as keys arrive, squad one key behind") {
     track t = keys_at({{0, quat{}}, {0.5, exp(vec3{0, 0, 0.2})}, {1, exp(vec3{0, 0.3, 0})}, {1.5, quat{}}});
     for (method m : {method::slerp, method::squad}) {
         CAPTURE(to_string(m));
         std::vector<sample> got;
-        track_resampler r({4, m, path::shortest}, std::nullopt, false, [&](const sample& s) { got.push_back(s); });
+        track_resampler r({4, m, path::shortest}, std::nullopt, channels{}, [&](const sample& s) { got.push_back(s); });
         std::vector<std::size_t> after;
         for (const key& k : t.keys) {
             r.add(k);

@@ -19,7 +19,7 @@ TEST_CASE("writers: CSV, JSON and NDJSON tables") {
     const double s = std::sqrt(0.5);
     const std::vector<sample> rows = {{0, 0.0, quat{}, vec3{1, 2, 3}}, {0.5, 12.0, quat{s, 0, 0, s}, vec3{0, 0, -1}}};
     table_info info;
-    info.translation = true;
+    info.carried.translation = true;
     info.fps = 24;
     info.method = "slerp";
     write_options w;
@@ -48,7 +48,7 @@ TEST_CASE("keyrot reads what it writes, in every format and representation") {
     std::vector<sample> rows;
     for (int i = 0; i < 5; ++i) rows.push_back({i / 24.0, static_cast<double>(i), rng.next(), vec3{0.5 * i, 1, 2}});
     table_info info;
-    info.translation = true;
+    info.carried.translation = true;
     info.fps = 24;
     for (format f : {format::csv, format::json, format::ndjson}) {
         for (const auto& named : names_of<rep>) {

@@ -11,7 +11,7 @@ namespace keyrot {
 
 struct tolerances {
     double rotation_deg = 0.01;  ///< geodesic angle
-    double translation = 0.001;  ///< Euclidean distance
+    double translation = 0.001;  ///< Euclidean distance, of translations and of scales
 };
 
 /// One row of the report: a key of EXPECTED, of ACTUAL, or a matched pair.
@@ -21,6 +21,7 @@ struct row_difference {
     double time = 0;
     std::optional<double> angle_deg;    ///< sign-invariant geodesic angle; absent if unmatched
     std::optional<double> translation;  ///< distance, when EXPECTED has a translation and ACTUAL too
+    std::optional<double> scale;        ///< the same for scales
     std::string problem;                ///< why it failed ("only in ACTUAL", ...); empty if it passed
     bool pass() const { return problem.empty(); }
 };

@@ -17,9 +17,9 @@ struct resample_options {
     /// At most this many frames per track (116 hours at 24 fps), so that a
     /// typo in a time fails at once instead of writing for hours.
     double max_frames = 1e7;
-    /// How translations are interpolated, where not as `how` says: step
-    /// holds, cubicspline is Hermite, any other method is linear.
-    std::optional<method> translation_how = std::nullopt;
+    /// How translations and scales are interpolated, where not as `how`
+    /// says: step holds, cubicspline is Hermite, any other method is linear.
+    std::optional<method> translation_how = std::nullopt, scale_how = std::nullopt;
     /// The relative rounding of the key times as stored (2^-24 for glTF's
     /// 32-bit floats): a frame that close to a key is at it, beyond the
     /// grid's own tolerance of 1e-9 frame.
@@ -36,17 +36,45 @@ using frame_sink = std::function<void(const sample&)>;
 void check_frame_range(const key& first, const key& last, const std::string& track_name,
                        const resample_options& opts, const std::string& source);
 
+/// One vector channel of a track (its translation or its scale) as its keys
+/// arrive: linear between the keys that carry one (held for step, Hermite
+/// for cubicspline), held before the first and after the last of them.
+class vector_channel {
+public:
+    /// `how` as resample_options::translation_how; `expected`: some key of
+    /// the track carries this channel (frames then wait for its key after them).
+    vector_channel(const resample_options& opts, method how, bool expected);
+    /// Times strictly increasing. `in`, `out`: cubicspline's tangents.
+    void add(double time, vec3 value, vec3 in, vec3 out);
+    /// Sets `value` to the channel at a frame's `time` and returns true, or
+    /// returns false while the key at or after `time` has not arrived (unless
+    /// `end`: no more keys come). Frames ask in increasing time.
+    bool at(double time, bool end, std::optional<vec3>& value);
+
+private:
+    struct vector_key {
+        double time;
+        vec3 value, in, out;
+    };
+    vec3 between(const vector_key& a, const vector_key& b, double time) const;
+
+    resample_options opts_;
+    method how_;
+    bool expected_;
+    std::deque<vector_key> keys_;  // the ones later frames may still need
+};
+
 /// Resamples one track whose keys arrive one at a time: frames come out, in
 /// order, as soon as the keys around them (and squad's look-ahead, and the
-/// next translation key) are known. Frame k has time k / fps, computed
-/// afresh, never accumulated. At a key time the rotation is that key's;
-/// quaternion signs are continuous from frame to frame, starting from the
-/// first key's sign. The caller checks the range with check_frame_range.
+/// next translation and scale key) are known. Frame k has time k / fps,
+/// computed afresh, never accumulated. At a key time the rotation is that
+/// key's; quaternion signs are continuous from frame to frame, starting
+/// from the first key's sign. The caller checks the range with
+/// check_frame_range.
 class track_resampler {
 public:
-    /// `translations`: some key of the track carries a translation (frames
-    /// then wait for the translation key after them).
-    track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, bool translations,
+    /// `carried`: the channels some key of the track carries.
+    track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, channels carried,
                     frame_sink emit);
     /// Precondition: times strictly increasing (check_order, as track_builder checks).
     void add(const key& k);
@@ -57,27 +85,19 @@ private:
     void frames_of(const segment& s);
     void frames_until(double time, quat q);  // frames at a key time, up to `time` (within tolerance)
     void out(double frame, quat q);
-    void resolve_translations(bool end);
-    /// How far, in seconds, a frame may be from a key at `key_time` and count as at it.
-    double tolerance(double key_time) const;
+    void resolve_vectors(bool end);
 
     resample_options opts_;
     segment_builder builder_;
     frame_sink emit_;
-    bool translations_;
+    bool vectors_;  // a translation or scale channel: frames wait in pending_
     bool started_ = false;
     double next_frame_ = 0;
     double last_time_ = 0;
     quat last_key_, previous_;
     bool emitted_ = false;
-    struct translation_key {
-        double time;
-        vec3 value, in, out;  // in, out: cubicspline's tangents
-    };
-    vec3 translation_between(const translation_key& a, const translation_key& b, double time) const;
-    method translation_how_;
-    std::deque<translation_key> translation_keys_;  // the ones later frames may still need
-    std::deque<sample> pending_;                             // frames waiting for a translation key
+    vector_channel translation_, scale_;
+    std::deque<sample> pending_;  // frames waiting for a translation or scale key
 };
 
 /// A whole track: check_frame_range, then every frame through emit. Keys at

@@ -28,18 +28,21 @@ std::string where(const std::string& source, const location& at);
 
 /// A glTF CUBICSPLINE key as its spline passes it: the rotation as stored
 /// (not normalised), and the tangents, derivatives per second of the
-/// quaternion's components (w, x, y, z) and of the translation.
+/// quaternion's components (w, x, y, z), of the translation and of the scale.
 struct spline_key {
     quat rotation{0, 0, 0, 0}, rotation_in{0, 0, 0, 0}, rotation_out{0, 0, 0, 0};
     vec3 translation_in, translation_out;
+    vec3 scale_in, scale_out;
 };
 
 /// How a file says a track is interpolated (glTF's samplers): the
-/// rotation's method, and the translation's (step holds, cubicspline is
-/// Hermite, any other is linear); and how precisely it stores times.
+/// rotation's method, and the translation's and scale's (step holds,
+/// cubicspline is Hermite, any other is linear); and how precisely it
+/// stores times.
 struct track_interpolation {
     method rotation = method::slerp;
     method translation = method::slerp;
+    method scale = method::slerp;
     double time_rounding = 0;  ///< as resample_options::time_rounding
     bool operator==(const track_interpolation&) const = default;
 };
@@ -51,7 +54,7 @@ struct raw_key {
     std::optional<double> time, frame;
     rep kind = rep::quat;
     std::array<double, 16> values{};  ///< as many as `kind` needs
-    std::optional<vec3> translation;
+    std::optional<vec3> translation, scale;
     std::string unknown;  ///< a JSON key's first field that keyrot does not read, if any
     std::optional<spline_key> spline;  ///< glTF CUBICSPLINE keys only
 };
@@ -78,7 +81,7 @@ struct key {
     std::optional<double> frame;  ///< as given (the key's time, unless it also has a time)
     bool has_time = true;         ///< the input gave a time (not only a frame)
     quat rotation;                ///< unit
-    std::optional<vec3> translation;
+    std::optional<vec3> translation, scale;
     rep given_as = rep::quat;
     /// The Euler angles as given (radians), for --method euler.
     std::optional<std::array<double, 3>> euler;
@@ -94,6 +97,22 @@ struct track {
     std::optional<track_interpolation> interpolation = std::nullopt;  ///< the file's own, where it states one
 };
 
+/// The optional channels beside the rotation that some key of a track
+/// carries, and so its rows: a track with a translation writes tx ty tz on
+/// every row.
+struct channels {
+    bool translation = false, scale = false;
+    bool operator==(const channels&) const = default;
+    channels& operator|=(const channels& o) {
+        translation = translation || o.translation, scale = scale || o.scale;
+        return *this;
+    }
+    bool any() const { return translation || scale; }
+};
+
+/// The channels key `k` carries.
+inline channels channels_of(const key& k) { return {k.translation.has_value(), k.scale.has_value()}; }
+
 /// One output row, what the sampler hands the writers: a resampled frame
 /// (frame = k) or a converted key.
 struct sample {
@@ -101,6 +120,7 @@ struct sample {
     std::optional<double> frame;
     quat rotation;
     std::optional<vec3> translation;
+    std::optional<vec3> scale = std::nullopt;
     bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
 };
 

@@ -53,6 +53,7 @@ std::string json_report(const comparison& c, const tolerances& tol) {
         if (r.angle_deg) number(*r.angle_deg);
         else out += "null";
         if (r.translation) out += ", \"translation_difference\": ", number(*r.translation);
+        if (r.scale) out += ", \"scale_difference\": ", number(*r.scale);
         out += fmt::format(", \"pass\": {}", r.pass() ? "true" : "false");
         if (!r.pass()) out += ", \"reason\": " + json_quote(r.problem);
         out += '}';

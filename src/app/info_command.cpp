@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <ostream>
+#include <utility>
+#include <vector>
 
 #include "app/commands.hpp"
 #include "app/plan.hpp"
@@ -24,14 +26,16 @@ std::string rep_list(const std::vector<rep>& reps) {
     return fmt::format("{}", fmt::join(names, ", "));
 }
 
-bool has_translation(const track& t) {
-    return std::any_of(t.keys.begin(), t.keys.end(), [](const key& k) { return k.translation.has_value(); });
-}
-
-/// "slerp" for a glTF LINEAR sampler, as --method names it.
-std::string interpolation_text(const track_interpolation& i, bool translation) {
-    return translation ? fmt::format("rotation {}, translation {}", to_string(i.rotation), to_string(i.translation))
-                       : fmt::format("rotation {}", to_string(i.rotation));
+/// How a track's file says its channels are interpolated ("slerp" for a
+/// glTF LINEAR sampler, as --method names it): {"rotation", "slerp"}, ...
+std::vector<std::pair<std::string_view, std::string_view>> interpolations(const track& t) {
+    const track_interpolation& i = *t.interpolation;
+    channels carried;
+    for (const key& k : t.keys) carried |= channels_of(k);
+    std::vector<std::pair<std::string_view, std::string_view>> out{{"rotation", to_string(i.rotation)}};
+    if (carried.translation) out.emplace_back("translation", to_string(i.translation));
+    if (carried.scale) out.emplace_back("scale", to_string(i.scale));
+    return out;
 }
 
 std::string info_text(const document& doc, const std::vector<track_info>& infos, std::optional<int> precision) {
@@ -47,8 +51,11 @@ std::string info_text(const document& doc, const std::vector<track_info>& infos,
         const track_info& t = infos[n];
         out += fmt::format("{}: {} key{}, {} s to {} s, given as {}\n", t.name.empty() ? "track" : "track " + t.name,
                            t.keys, t.keys == 1 ? "" : "s", num(t.start), num(t.end), rep_list(t.given_as));
-        if (const auto& own = doc.tracks[n].interpolation)
-            out += fmt::format("  interpolation: {}\n", interpolation_text(*own, has_translation(doc.tracks[n])));
+        if (doc.tracks[n].interpolation) {
+            std::vector<std::string> each;
+            for (const auto& [channel, how] : interpolations(doc.tracks[n])) each.push_back(fmt::format("{} {}", channel, how));
+            out += fmt::format("  interpolation: {}\n", fmt::join(each, ", "));
+        }
         for (std::size_t i = 0; i < t.segments.size(); ++i) {
             const segment_info& s = t.segments[i];
             if (i == 0) out += "  segment  angle (deg)  speed (deg/s)\n";
@@ -79,14 +86,14 @@ std::string info_json(const document& doc, const std::vector<track_info>& infos)
         for (const segment_info& s : t.segments)
             segments.push_back(fmt::format("{{\"angle\": {}, \"speed\": {}, \"direct_long_way\": {}}}", num(s.angle_deg),
                                            num(s.speed_deg_s), t.signed_keys ? fmt::format("{}", s.direct_long_way) : "null"));
-        const auto& own = doc.tracks[n].interpolation;
         // Only where the file states it (glTF).
-        const std::string interpolation =
-            !own ? ""
-            : has_translation(doc.tracks[n])
-                ? fmt::format(", \"interpolation\": {{\"rotation\": \"{}\", \"translation\": \"{}\"}}",
-                              to_string(own->rotation), to_string(own->translation))
-                : fmt::format(", \"interpolation\": {{\"rotation\": \"{}\"}}", to_string(own->rotation));
+        std::string interpolation;
+        if (doc.tracks[n].interpolation) {
+            std::vector<std::string> each;
+            for (const auto& [channel, how] : interpolations(doc.tracks[n]))
+                each.push_back(fmt::format("\"{}\": \"{}\"", channel, how));
+            interpolation = fmt::format(", \"interpolation\": {{{}}}", fmt::join(each, ", "));
+        }
         out += fmt::format(
             "{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}], \"segments\": [{}], "
             "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}{}}}",

@@ -76,7 +76,7 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     const std::optional<std::string> target = output_path(o);
     const format to = o.to.value_or(target ? format_of_path(*target).value_or(format::csv) : format::csv);
     const auto table = open_table(to, target, out, info, writing(o, t.euler), warn0);
-    table->begin_track("", false, track_interpolation{});
+    table->begin_track("", channels{}, track_interpolation{});
     const auto row = [&](double h) {
         const quat q = h == 0 ? curve.at_key(0) : h == 1 ? curve.at_key(1) : curve.at(0, h);
         table->row(sample{h, std::nullopt, q, std::nullopt});

@@ -35,7 +35,7 @@ struct document_facts {
     struct track_facts {
         std::string name;
         key first, last;
-        bool translation = false;
+        channels carried;
         std::optional<euler_seq> euler;
         double key_fps = 24;
         std::size_t keys = 0;
@@ -54,15 +54,18 @@ struct document_facts {
         any_time = any_time || k.has_time;
         frames = frames || (k.frame && k.has_time);
         if (tracks.empty() || tracks.back().name != track)
-            tracks.push_back({track, k, k, false, s.euler, s.key_fps, 0, s.interpolation});
+            tracks.push_back({track, k, k, {}, s.euler, s.key_fps, 0, s.interpolation});
         any_frame = any_frame || k.frame.has_value();
         ++tracks.back().keys;
-        tracks.back().translation = tracks.back().translation || k.translation.has_value();
+        tracks.back().carried |= channels_of(k);
         tracks.back().last = std::move(k);
     }
 
-    bool translation() const {
-        return std::any_of(tracks.begin(), tracks.end(), [](const track_facts& t) { return t.translation; });
+    /// The channels some track carries.
+    channels carried() const {
+        channels c;
+        for (const track_facts& t : tracks) c |= t.carried;
+        return c;
     }
 };
 
@@ -79,7 +82,7 @@ document_facts facts_of(const document& doc) {
     return d;
 }
 
-sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.has_time}; }
+sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.scale, k.has_time}; }
 
 /// What makes a track's rows from its keys, chosen once per input:
 /// resample's frame grid, or convert's keys as they are.
@@ -96,7 +99,7 @@ public:
     virtual track_interpolation written(const std::optional<track_interpolation>& own) const = 0;
     /// A track begins (`own`: the interpolation its file states): its rows go to `row`.
     virtual void begin_track(const std::optional<euler_seq>& euler, const std::optional<track_interpolation>& own,
-                             bool translation, frame_sink row) = 0;
+                             channels carried, frame_sink row) = 0;
     virtual void add(const key& k) = 0;
     virtual void end_track() = 0;
 };
@@ -109,7 +112,7 @@ public:
     table_info table(const document_facts& d) const override {
         table_info info;
         info.named = d.named;
-        info.translation = d.translation();
+        info.carried = d.carried();
         info.fps = opts_.fps;
         // The method, when one interpolates every track's rotation.
         const method first = of(d.tracks.front().interpolation).how;
@@ -132,11 +135,12 @@ public:
     track_interpolation written(const std::optional<track_interpolation>& own) const override {
         const resample_options r = of(own);
         const auto linear_or_step = [](method m) { return m == method::step ? method::step : method::slerp; };
-        return {linear_or_step(r.how), linear_or_step(r.translation_how.value_or(r.how))};
+        return {linear_or_step(r.how), linear_or_step(r.translation_how.value_or(r.how)),
+                linear_or_step(r.scale_how.value_or(r.how))};
     }
     void begin_track(const std::optional<euler_seq>& euler, const std::optional<track_interpolation>& own,
-                     bool translation, frame_sink row) override {
-        resampler_.emplace(of(own), euler, translation, std::move(row));
+                     channels carried, frame_sink row) override {
+        resampler_.emplace(of(own), euler, carried, std::move(row));
     }
     void add(const key& k) override { resampler_->add(k); }
     void end_track() override { resampler_->finish(); }
@@ -147,7 +151,7 @@ private:
         resample_options r = opts_;
         if (!own) return r;
         r.time_rounding = own->time_rounding;
-        if (!method_given_) r.how = own->rotation, r.translation_how = own->translation;
+        if (!method_given_) r.how = own->rotation, r.translation_how = own->translation, r.scale_how = own->scale;
         return r;
     }
 
@@ -162,7 +166,7 @@ public:
     table_info table(const document_facts& d) const override {
         table_info info;
         info.named = d.named;
-        info.translation = d.translation();
+        info.carried = d.carried();
         info.times = time_columns::as_given;
         info.all_frames = d.all_frames;
         info.any_time = d.any_time;
@@ -184,7 +188,7 @@ public:
     track_interpolation written(const std::optional<track_interpolation>& own) const override {
         return own.value_or(track_interpolation{});  // (its time_rounding is not written)
     }
-    void begin_track(const std::optional<euler_seq>&, const std::optional<track_interpolation>&, bool,
+    void begin_track(const std::optional<euler_seq>&, const std::optional<track_interpolation>&, channels,
                      frame_sink row) override {
         row_ = std::move(row);
     }
@@ -257,7 +261,7 @@ bool scan_json(const transform_plan& p, const input_source& src, document_facts&
 /// Pass 2 over a streamed input whose tracks come one after another:
 /// each track's rows made as its keys arrive. With `known` (pass 1's facts)
 /// the keys are known to be good; without (one pass), each track is taken
-/// to have translations if its first key has one, and the keys are checked
+/// to carry the channels its first key carries, and the keys are checked
 /// as pass 1 checks them. Returns the facts seen, or nothing when a track
 /// comes back after another one began, or the reader declines the document.
 std::optional<document_facts> stream_rows(const transform_plan& p, const input_source& src,
@@ -283,9 +287,9 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
         if (!known) p.rows->check_key(same_track ? seen.tracks.back().first : k, k, name, src.source());
         if (!same_track) {
             if (!seen.tracks.empty()) p.rows->end_track();
-            const bool translation = known ? known->tracks[seen.tracks.size()].translation : k.translation.has_value();
-            rows.begin_track(name, translation, p.rows->written(settings.interpolation));
-            p.rows->begin_track(settings.euler, settings.interpolation, translation, row);
+            const channels carried = known ? known->tracks[seen.tracks.size()].carried : channels_of(k);
+            rows.begin_track(name, carried, p.rows->written(settings.interpolation));
+            p.rows->begin_track(settings.euler, settings.interpolation, carried, row);
         }
         if (k.spline) rows.key_spline(*k.spline);
         p.rows->add(k);
@@ -302,9 +306,9 @@ void whole_rows(const transform_plan& p, const document& doc, const document_fac
     const auto row = [&](const sample& s) { rows.row(s); };
     for (std::size_t i = 0; i < doc.tracks.size(); ++i) {
         const track& t = doc.tracks[i];
-        const bool translation = d.tracks[i].translation;
-        rows.begin_track(t.name, translation, p.rows->written(t.interpolation));
-        p.rows->begin_track(t.euler, t.interpolation, translation, row);
+        const channels carried = d.tracks[i].carried;
+        rows.begin_track(t.name, carried, p.rows->written(t.interpolation));
+        p.rows->begin_track(t.euler, t.interpolation, carried, row);
         for (const key& k : t.keys) {
             if (k.spline) rows.key_spline(*k.spline);
             p.rows->add(k);
@@ -315,7 +319,7 @@ void whole_rows(const transform_plan& p, const document& doc, const document_fac
 
 /// resample or convert from streamed input into the plan's file in one
 /// pass. The writer needs facts before the first row that pass 1 would
-/// gather (track names, translations, convert's time columns); they are
+/// gather (track names, channels, convert's time columns); they are
 /// guessed from the first key instead. When a guess proves wrong, the
 /// reader declines the document, or anything fails, the temporary file is
 /// dropped and false returned: the two passes then give the output or the
@@ -337,7 +341,7 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
         if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
         p.rows->check(*seen, src.source());
         for (const auto& t : seen->tracks)
-            if (t.translation != t.first.translation.has_value()) return false;
+            if (t.carried != channels_of(t.first)) return false;
         table->finish();
         return true;
     });

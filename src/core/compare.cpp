@@ -72,7 +72,7 @@ private:
 double rounding_of(const track& t) { return t.interpolation ? t.interpolation->time_rounding : 0; }
 
 row_difference unmatched(const track& t, const key& k, const char* problem) {
-    return {t.name, k.frame, k.time, std::nullopt, std::nullopt, problem};
+    return {t.name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, problem};
 }
 
 }  // namespace
@@ -110,19 +110,22 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
             const key& other = a->keys[*j];
             row_difference r{e.name, k.frame, k.time, from_radians(geodesic_angle(k.rotation, other.rotation),
                                                                    angle_unit::degrees),
-                             std::nullopt, ""};
+                             std::nullopt, std::nullopt, ""};
             if (*r.angle_deg > tol.rotation_deg)
                 r.problem = fmt::format("rotation differs by {:.6g} deg (tolerance {:g})", *r.angle_deg, tol.rotation_deg);
-            if (k.translation) {
-                if (!other.translation) {
-                    if (r.problem.empty()) r.problem = "translation missing from ACTUAL";
-                } else {
-                    r.translation = norm(*k.translation - *other.translation);
-                    if (*r.translation > tol.translation && r.problem.empty())
-                        r.problem = fmt::format("translation differs by {:.6g} (tolerance {:g})", *r.translation,
-                                                tol.translation);
+            const auto vector = [&](const std::optional<vec3>& e_value, const std::optional<vec3>& a_value,
+                                    std::optional<double>& difference, std::string_view what) {
+                if (!e_value) return;
+                if (!a_value) {
+                    if (r.problem.empty()) r.problem = fmt::format("{} missing from ACTUAL", what);
+                    return;
                 }
-            }
+                difference = norm(*e_value - *a_value);
+                if (*difference > tol.translation && r.problem.empty())
+                    r.problem = fmt::format("{} differs by {:.6g} (tolerance {:g})", what, *difference, tol.translation);
+            };
+            vector(k.translation, other.translation, r.translation, "translation");
+            vector(k.scale, other.scale, r.scale, "scale");
             if (!out.worst || *r.angle_deg > *out.rows[*out.worst].angle_deg) out.worst = out.rows.size();
             out.rows.push_back(r);
         }

@@ -121,7 +121,7 @@ quat segment_builder::add(const key& k) {
     std::array<double, 3> e{};
     if (how_ == method::euler) e = k.euler ? *k.euler : to_euler(k.rotation, *seq_).angles;
     // A key without a spline passes its rotation, with no tangents.
-    const spline_key spline = k.spline.value_or(spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}});
+    const spline_key spline = k.spline.value_or(spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}});
     window_.push_back({k.time, q, q, e, spline});  // s = q until both neighbours are known
     const std::size_t n = window_.size();
     if (how_ == method::squad && n >= 3) window_[n - 2].s = squad_control(window_[n - 3].q, window_[n - 2].q, q);

@@ -16,6 +16,9 @@ double tolerance_frames(double time, const resample_options& opts) {
     return std::max(tol::grid_frames, std::fabs(time) * opts.fps * opts.time_rounding);
 }
 
+/// The same in seconds.
+double tolerance(double time, const resample_options& opts) { return tolerance_frames(time, opts) / opts.fps; }
+
 }  // namespace
 
 void check_frame_range(const key& first, const key& last, const std::string& track_name, const resample_options& opts,
@@ -40,13 +43,55 @@ void check_frame_range(const key& first, const key& last, const std::string& tra
                                       last.time, last_frame - first_frame + 1, fps, opts.max_frames));
 }
 
-track_resampler::track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, bool translations,
+vector_channel::vector_channel(const resample_options& opts, method how, bool expected)
+    : opts_(opts), how_(how), expected_(expected) {}
+
+void vector_channel::add(double time, vec3 value, vec3 in, vec3 out) { keys_.push_back({time, value, in, out}); }
+
+vec3 vector_channel::between(const vector_key& a, const vector_key& b, double time) const {
+    const double h = (time - a.time) / (b.time - a.time);
+    switch (how_) {
+        case method::step: return a.value;
+        case method::cubicspline: {
+            const auto c = [](vec3 v) { return std::array<double, 4>{v.x, v.y, v.z, 0}; };
+            const auto p = hermite(c(a.value), c(a.out), c(b.value), c(b.in), b.time - a.time, h);
+            return {p[0], p[1], p[2]};
+        }
+        default: return (1 - h) * a.value + h * b.value;
+    }
+}
+
+bool vector_channel::at(double time, bool end, std::optional<vec3>& value) {
+    if (!expected_) return true;
+    auto& keys = keys_;
+    const auto tol = [this](double key_time) { return tolerance(key_time, opts_); };
+    std::size_t j = 0;  // the first key at or after the frame
+    while (j < keys.size() && keys[j].time < time - tol(keys[j].time)) ++j;
+    if (j == keys.size()) {
+        if (!end) return false;
+        if (!keys.empty()) value = keys.back().value;
+    } else if (keys[j].time - time <= tol(keys[j].time) || j == 0) {
+        // Of keys within tolerance, the nearer; one not yet here may be nearer still.
+        while (j + 1 < keys.size() && std::fabs(keys[j + 1].time - time) < std::fabs(keys[j].time - time)) ++j;
+        if (!end && j + 1 == keys.size() && keys[j].time != time && keys[j].time - time <= tol(keys[j].time))
+            return false;
+        value = keys[j].value;
+    } else {
+        value = between(keys[j - 1], keys[j], time);
+    }
+    // keep the key before the next frame's segment
+    while (keys.size() > 1 && j > 1) keys.pop_front(), --j;
+    return true;
+}
+
+track_resampler::track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, channels carried,
                                  frame_sink emit)
     : opts_(opts),
       builder_(opts.how, opts.way, seq),
       emit_(std::move(emit)),
-      translations_(translations),
-      translation_how_(opts.translation_how.value_or(opts.how)) {}
+      vectors_(carried.any()),
+      translation_(opts, opts.translation_how.value_or(opts.how), carried.translation),
+      scale_(opts, opts.scale_how.value_or(opts.how), carried.scale) {}
 
 void track_resampler::add(const key& k) {
     if (!started_) {
@@ -54,10 +99,11 @@ void track_resampler::add(const key& k) {
         // (+ 0: the ceiling of a time just below 0 is -0, which a glTF file would keep)
         next_frame_ = std::ceil(k.time * opts_.fps - tolerance_frames(k.time, opts_)) + 0.0;
     }
-    if (k.translation) {
+    if (k.translation || k.scale) {
         const spline_key spline = k.spline.value_or(spline_key{});
-        translation_keys_.push_back({k.time, *k.translation, spline.translation_in, spline.translation_out});
-        resolve_translations(false);
+        if (k.translation) translation_.add(k.time, *k.translation, spline.translation_in, spline.translation_out);
+        if (k.scale) scale_.add(k.time, *k.scale, spline.scale_in, spline.scale_out);
+        resolve_vectors(false);
     }
     last_key_ = builder_.add(k);
     last_time_ = k.time;
@@ -70,10 +116,8 @@ void track_resampler::finish() {
     segment s;
     while (builder_.pop(s, true)) frames_of(s);
     frames_until(last_time_, last_key_);
-    resolve_translations(true);
+    resolve_vectors(true);
 }
-
-double track_resampler::tolerance(double key_time) const { return tolerance_frames(key_time, opts_) / opts_.fps; }
 
 void track_resampler::frames_of(const segment& s) {
     // frames in [t0, t1): at t0 the key itself, inside by the curve; a frame
@@ -81,6 +125,7 @@ void track_resampler::frames_of(const segment& s) {
     // both (keys closer together than it), the nearer key's, so that at a
     // key's exact time the frame is that key.
     const auto time = [this] { return next_frame_ / opts_.fps; };
+    const auto tolerance = [this](double key_time) { return keyrot::tolerance(key_time, opts_); };
     const auto in_segment = [&] { return time() <= s.t1 - tolerance(s.t1); };
     const double from_start = std::fabs(time() - s.t0);
     if (from_start <= tolerance(s.t0) && from_start <= std::fabs(time() - s.t1)) out(next_frame_, s.q0), ++next_frame_;
@@ -92,7 +137,7 @@ void track_resampler::frames_of(const segment& s) {
 }
 
 void track_resampler::frames_until(double time, quat q) {
-    for (; next_frame_ / opts_.fps <= time + tolerance(time); ++next_frame_) out(next_frame_, q);
+    for (; next_frame_ / opts_.fps <= time + tolerance(time, opts_); ++next_frame_) out(next_frame_, q);
 }
 
 void track_resampler::out(double frame, quat q) {
@@ -103,61 +148,28 @@ void track_resampler::out(double frame, quat q) {
     s.frame = frame;
     s.time = frame / opts_.fps;
     s.rotation = q;
-    if (!translations_) {
+    if (!vectors_) {
         emit_(s);
         return;
     }
     pending_.push_back(s);
-    resolve_translations(false);
+    resolve_vectors(false);
 }
 
-vec3 track_resampler::translation_between(const translation_key& a, const translation_key& b, double time) const {
-    const double h = (time - a.time) / (b.time - a.time);
-    switch (translation_how_) {
-        case method::step: return a.value;
-        case method::cubicspline: {
-            const auto c = [](vec3 v) { return std::array<double, 4>{v.x, v.y, v.z, 0}; };
-            const auto p = hermite(c(a.value), c(a.out), c(b.value), c(b.in), b.time - a.time, h);
-            return {p[0], p[1], p[2]};
-        }
-        default: return (1 - h) * a.value + h * b.value;
-    }
-}
-
-void track_resampler::resolve_translations(bool end) {
-    // The translation channel: linear between the keys that carry one (held
-    // for step, Hermite for cubicspline), held before the first and after
-    // the last of them. A frame waits until the first translation key at or
-    // after it has arrived.
-    auto& keys = translation_keys_;
+void track_resampler::resolve_vectors(bool end) {
     while (!pending_.empty()) {
         sample& s = pending_.front();
-        std::size_t j = 0;  // the first translation key at or after the frame
-        while (j < keys.size() && keys[j].time < s.time - tolerance(keys[j].time)) ++j;
-        if (j == keys.size()) {
-            if (!end) return;
-            if (!keys.empty()) s.translation = keys.back().value;
-        } else if (keys[j].time - s.time <= tolerance(keys[j].time) || j == 0) {
-            // Of keys within tolerance, the nearer; one not yet here may be nearer still.
-            while (j + 1 < keys.size() && std::fabs(keys[j + 1].time - s.time) < std::fabs(keys[j].time - s.time)) ++j;
-            if (!end && j + 1 == keys.size() && keys[j].time != s.time && keys[j].time - s.time <= tolerance(keys[j].time))
-                return;
-            s.translation = keys[j].value;
-        } else {
-            s.translation = translation_between(keys[j - 1], keys[j], s.time);
-        }
+        if (!translation_.at(s.time, end, s.translation) || !scale_.at(s.time, end, s.scale)) return;
         emit_(s);
         pending_.pop_front();
-        // keep the key before the next frame's segment
-        while (keys.size() > 1 && j > 1) keys.pop_front(), --j;
     }
 }
 
 void resample(const track& t, const resample_options& opts, const std::string& source, const frame_sink& emit) {
     check_frame_range(t.keys.front(), t.keys.back(), t.name, opts, source);
-    bool translations = false;
-    for (const key& k : t.keys) translations = translations || k.translation.has_value();
-    track_resampler r(opts, t.euler, translations, emit);
+    channels carried;
+    for (const key& k : t.keys) carried |= channels_of(k);
+    track_resampler r(opts, t.euler, carried, emit);
     for (const key& k : t.keys) r.add(k);
     r.finish();
 }

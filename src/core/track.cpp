@@ -73,6 +73,7 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     out.at = k.at;
     out.given_as = k.kind;
     out.translation = k.translation;
+    out.scale = k.scale;
     out.spline = k.spline;
     // A row with both is a frame of keyrot's own output, at whatever rate it
     // was made: its time times it, its frame is kept as a label (compare

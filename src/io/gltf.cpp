@@ -20,7 +20,7 @@ namespace {
 struct channel_curve {
     std::string path;  // "animations[0].samplers[2]", for messages
     std::vector<double> times;
-    std::size_t width = 0;  // 4 for a rotation, 3 for a translation
+    std::size_t width = 0;  // 4 for a rotation, 3 for a translation or scale
     method how = method::slerp;
     std::vector<double> values;  // per key: width values; CUBICSPLINE: in-tangent, value, out-tangent
 
@@ -79,7 +79,7 @@ channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std:
 
 /// The curve's value at `time` within its keys (and, for CUBICSPLINE, its
 /// derivative per second there), as the specification interpolates it:
-/// LINEAR rotations by slerp the short way, translations by lerp.
+/// LINEAR rotations by slerp the short way, translations and scales by lerp.
 std::pair<std::array<double, 4>, std::array<double, 4>> evaluate(const channel_curve& c, double time) {
     // Outside its keys a channel holds its first or last value (as glTF clamps).
     if (time <= c.times.front()) return {c.get(0, 0), {}};
@@ -166,7 +166,7 @@ struct node_track {
     std::string name;
 };
 
-/// Animation `a`'s rotation and translation channels, by node in the order
+/// Animation `a`'s rotation, translation and scale channels, by node in the order
 /// of their first channel. Other channels are noted and left out.
 std::vector<node_track> channels_of(const gltf_file& file, std::size_t a, warnings& warn) {
     const gltf_json& anim = top_array(file, "animations")[a];
@@ -191,9 +191,9 @@ std::vector<node_track> channels_of(const gltf_file& file, std::size_t a, warnin
             continue;
         }
         const std::size_t node = index_into(file, target["node"], "nodes", here + ".target.node");
-        if (what != "rotation" && what != "translation") {
-            warn.once("gltf-" + what, fmt::format("{} channels are not read: keyrot reads rotation and translation "
-                                                  "channels (first at {}.channels[{}])",
+        if (what != "rotation" && what != "translation" && what != "scale") {
+            warn.once("gltf-" + what, fmt::format("{} channels are not read: keyrot reads rotation, translation and "
+                                                  "scale channels (first at {}.channels[{}])",
                                                   excerpt(what.empty() ? "unnamed" : what), path, c));
             continue;
         }
@@ -201,8 +201,9 @@ std::vector<node_track> channels_of(const gltf_file& file, std::size_t a, warnin
             throw input_error(here + ".sampler", fmt::format("{}: expected an index into {}.samplers",
                                                              excerpt(ch["sampler"].dump()), path));
         const auto [it, added] = index.emplace(node, nodes.size());
-        if (added) nodes.push_back({{a, node, std::nullopt, std::nullopt}, {}});
-        auto& slot = what == "rotation" ? nodes[it->second].origin.rotation : nodes[it->second].origin.translation;
+        if (added) nodes.push_back({{a, node, std::nullopt, std::nullopt, std::nullopt}, {}});
+        gltf_track_origin& o = nodes[it->second].origin;
+        auto& slot = what == "rotation" ? o.rotation : what == "translation" ? o.translation : o.scale;
         if (slot)
             throw input_error(
                 here, fmt::format("node {}'s {} is animated twice in one animation: expected once", node, what));
@@ -228,8 +229,8 @@ std::vector<node_track> tracks_of(const gltf_file& file, const read_options& ro,
     }
     if (tracks.empty())
         throw input_error(ro.source,
-                          "no rotation or translation channels: expected an animation of a node's rotation "
-                          "or translation");
+                          "no rotation, translation or scale channels: expected an animation of a node's "
+                          "rotation, translation or scale");
     return tracks;
 }
 
@@ -271,18 +272,22 @@ private:
         };
         rotation_ = read(o.rotation, 4);
         translation_ = read(o.translation, 3);
+        scale_ = read(o.scale, 3);
         times_.clear();
-        for (const std::optional<channel_curve>* c : {&rotation_, &translation_})
-            if (*c) times_.insert(times_.end(), (*c)->times.begin(), (*c)->times.end());
+        spline_ = false;
+        for (const std::optional<channel_curve>* c : {&rotation_, &translation_, &scale_}) {
+            if (!*c) continue;
+            times_.insert(times_.end(), (*c)->times.begin(), (*c)->times.end());
+            spline_ = spline_ || (*c)->how == method::cubicspline;
+        }
         std::sort(times_.begin(), times_.end());
         times_.erase(std::unique(times_.begin(), times_.end()), times_.end());
-        spline_ = (rotation_ && rotation_->how == method::cubicspline) ||
-                  (translation_ && translation_->how == method::cubicspline);
         rest_ = rotation_ ? quat{} : rest_rotation(file_, o.node);
         node_ = o.node;
         settings_ = flags_;
-        settings_.interpolation = track_interpolation{rotation_ ? rotation_->how : method::step,
-                                                      translation_ ? translation_->how : method::slerp, 0x1p-24};
+        const auto how = [](const std::optional<channel_curve>& c, method absent) { return c ? c->how : absent; };
+        settings_.interpolation = track_interpolation{how(rotation_, method::step), how(translation_, method::slerp),
+                                                      how(scale_, method::slerp), 0x1p-24};
         key_ = 0;
     }
 
@@ -321,36 +326,41 @@ private:
             // Where make_key may say something of the key (zero, or renormalised): formatted only then.
             if (std::fabs(norm(q) - 1) > tol::unit_norm)
                 raw.at.path = keyed ? fmt::format("{}.output[{}]", rotation_->path, i)
-                                    : fmt::format("{}.input", translation_->path);
+                                    : fmt::format("{}.input", (translation_ ? translation_ : scale_)->path);
         } else {
             if (std::fabs(norm(rest_) - 1) > tol::unit_norm) raw.at.path = fmt::format("nodes[{}].rotation", node_);
             raw.values = {rest_.w, rest_.x, rest_.y, rest_.z};
             s.rotation = rest_;
         }
-        if (translation_ && t >= translation_->times.front() && t <= translation_->times.back()) {
-            const auto key = std::lower_bound(translation_->times.begin(), translation_->times.end(), t);
-            const std::size_t i = static_cast<std::size_t>(key - translation_->times.begin());
-            std::array<double, 4> v{}, in{}, out{};
-            if (*key == t) {
-                v = translation_->get(i, 0);
-                if (translation_->how == method::cubicspline)
-                    in = translation_->get(i, -1), out = translation_->get(i, 1);
-            } else {
-                std::tie(v, in) = evaluate(*translation_, t);
-                out = in;
-            }
-            raw.translation = vec3{v[0], v[1], v[2]};
-            s.translation_in = {in[0], in[1], in[2]}, s.translation_out = {out[0], out[1], out[2]};
-        }
+        if (translation_) raw.translation = vector_at(*translation_, t, s.translation_in, s.translation_out);
+        if (scale_) raw.scale = vector_at(*scale_, t, s.scale_in, s.scale_out);
         if (spline_) raw.spline = s;
         return raw;
+    }
+
+    /// A translation or scale channel at time `t`, with its tangents there:
+    /// its key, or its curve's value; nothing outside its keys (it is held).
+    static std::optional<vec3> vector_at(const channel_curve& c, double t, vec3& in, vec3& out) {
+        if (t < c.times.front() || t > c.times.back()) return std::nullopt;
+        const auto key = std::lower_bound(c.times.begin(), c.times.end(), t);
+        const std::size_t i = static_cast<std::size_t>(key - c.times.begin());
+        std::array<double, 4> v{}, before{}, after{};
+        if (*key == t) {
+            v = c.get(i, 0);
+            if (c.how == method::cubicspline) before = c.get(i, -1), after = c.get(i, 1);
+        } else {
+            std::tie(v, before) = evaluate(c, t);
+            after = before;
+        }
+        in = {before[0], before[1], before[2]}, out = {after[0], after[1], after[2]};
+        return vec3{v[0], v[1], v[2]};
     }
 
     gltf_file file_;
     std::vector<node_track> tracks_;
     key_settings flags_, settings_;
     std::size_t next_track_ = 0, key_ = 0, node_ = 0;
-    std::optional<channel_curve> rotation_, translation_;
+    std::optional<channel_curve> rotation_, translation_, scale_;
     std::vector<double> times_;
     bool spline_ = false;
     quat rest_;

@@ -1,6 +1,6 @@
 #pragma once
 // glTF 2.0 animations as tracks: one track per animated node (and
-// animation), its rotation and translation channels merged on one list of
+// animation), its rotation, translation and scale channels merged on one list of
 // key times, interpolated as their samplers say.
 #include <istream>
 #include <memory>
@@ -15,7 +15,7 @@ namespace keyrot {
 /// channels (indices into the animation's channels) it merges.
 struct gltf_track_origin {
     std::size_t animation = 0, node = 0;
-    std::optional<std::size_t> rotation, translation;
+    std::optional<std::size_t> rotation, translation, scale;
 };
 
 /// A glTF input, kept for a glTF output that rewrites it: the file, and
@@ -27,8 +27,8 @@ struct gltf_source {
 
 /// The keys of a glTF file (`f`: gltf or glb; relative buffer URIs from the
 /// directory of ro.source), track after track: every animation's, or the
-/// one ro.animation names. A track is a node's rotation and translation
-/// channels in one animation, named after the node ("node<i>" when
+/// one ro.animation names. A track is a node's rotation, translation and
+/// scale channels in one animation, named after the node ("node<i>" when
 /// unnamed), prefixed "<animation>/" when several animations are read.
 /// Where the channels are keyed at different times, each gets a key at the
 /// other's times too, its value on its own curve there (so the curve is the

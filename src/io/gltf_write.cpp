@@ -159,43 +159,42 @@ const char* interpolation_name(method m) {
     return m == method::step ? "STEP" : m == method::cubicspline ? "CUBICSPLINE" : "LINEAR";
 }
 
-/// A sampler of track `t`'s rotations (or translations) into `animation`; returns its index.
-std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_track& t, bool rotation,
+/// The channels of a node keyrot writes, by their glTF target path.
+enum class gltf_path { rotation, translation, scale };
+
+const char* path_name(gltf_path p) {
+    return p == gltf_path::rotation ? "rotation" : p == gltf_path::translation ? "translation" : "scale";
+}
+
+/// A sampler of track `t`'s channel `path` into `animation`; returns its index.
+std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_track& t, gltf_path path,
                         std::map<const std::vector<double>*, std::size_t>& inputs) {
-    const std::vector<double>& times = rotation ? t.times : t.translation_times;
-    const method how = rotation ? t.how.rotation : t.how.translation;
-    // Rotation and translation on the same times share their input.
-    const std::vector<double>* same = &t.times;
-    const bool shared = !rotation && t.translation_times == t.times;
+    const bool rotation = path == gltf_path::rotation;
+    const gltf_vectors* vectors = rotation ? nullptr : path == gltf_path::translation ? &t.translation : &t.scale;
+    const std::vector<double>& times = vectors ? vectors->times : t.times;
+    const method how = rotation ? t.how.rotation : path == gltf_path::translation ? t.how.translation : t.how.scale;
+    // Channels on the rotation's times share its input.
+    const std::vector<double>* input_times = vectors && vectors->times == t.times ? &t.times : &times;
     const std::string where = t.name.empty() ? b.source : fmt::format("{}: track '{}'", b.source, t.name);
-    auto input = inputs.find(shared ? same : &times);
-    if (input == inputs.end())
-        input = inputs.emplace(shared ? same : &times, b.accessor(time_values(times, where), 1, true)).first;
+    auto input = inputs.find(input_times);
+    if (input == inputs.end()) input = inputs.emplace(input_times, b.accessor(time_values(times, where), 1, true)).first;
     std::vector<float> values;
     const auto put = [&](std::initializer_list<double> v) {
-        for (const double x : v) values.push_back(single(x, where, rotation ? "rotation" : "translation"));
+        for (const double x : v) values.push_back(single(x, where, path_name(path)));
     };
-    const std::size_t n = times.size();
-    for (std::size_t i = 0; i < n; ++i) {
-        if (rotation) {
-            if (how == method::cubicspline) {
-                const spline_key& s = t.splines[i];
-                put({s.rotation_in.x, s.rotation_in.y, s.rotation_in.z, s.rotation_in.w});
-                put({s.rotation.x, s.rotation.y, s.rotation.z, s.rotation.w});
-                put({s.rotation_out.x, s.rotation_out.y, s.rotation_out.z, s.rotation_out.w});
-            } else {
-                const quat& q = t.rotations[i];
-                put({q.x, q.y, q.z, q.w});
-            }
+    const auto put_vector = [&](const vec3& v) { put({v.x, v.y, v.z}); };
+    const bool spline = how == method::cubicspline;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+        if (vectors) {
+            if (spline) put_vector(vectors->tangents[i][0]);
+            put_vector(vectors->values[i]);
+            if (spline) put_vector(vectors->tangents[i][1]);
+        } else if (spline) {
+            const spline_key& s = t.splines[i];
+            for (const quat& q : {s.rotation_in, s.rotation, s.rotation_out}) put({q.x, q.y, q.z, q.w});
         } else {
-            const vec3& p = t.translations[i];
-            if (how == method::cubicspline)
-                put({t.translation_splines[i].translation_in.x, t.translation_splines[i].translation_in.y,
-                     t.translation_splines[i].translation_in.z});
-            put({p.x, p.y, p.z});
-            if (how == method::cubicspline)
-                put({t.translation_splines[i].translation_out.x, t.translation_splines[i].translation_out.y,
-                     t.translation_splines[i].translation_out.z});
+            const quat& q = t.rotations[i];
+            put({q.x, q.y, q.z, q.w});
         }
     }
     gltf_json sampler = gltf_json::object();
@@ -227,10 +226,10 @@ gltf_json new_file(const std::vector<gltf_track>& tracks, buffer_builder& b, glt
         json_quote(tracks[i].name);  // throws for a name that is not UTF-8, which JSON cannot hold
         json["nodes"].push_back({{"name", tracks[i].name.empty() ? "track" : tracks[i].name}});
         json["scenes"][0]["nodes"].push_back(i);
-        animation["channels"].push_back(channel(add_sampler(b, animation, tracks[i], true, inputs), i, "rotation"));
-        if (!tracks[i].translations.empty())
-            animation["channels"].push_back(
-                channel(add_sampler(b, animation, tracks[i], false, inputs), i, "translation"));
+        for (const gltf_path p : {gltf_path::rotation, gltf_path::translation, gltf_path::scale})
+            if (p == gltf_path::rotation || !(p == gltf_path::translation ? tracks[i].translation : tracks[i].scale)
+                                                  .values.empty())
+                animation["channels"].push_back(channel(add_sampler(b, animation, tracks[i], p, inputs), i, path_name(p)));
     }
     return animation;
 }
@@ -246,12 +245,13 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
                               fmt::format("extensionsUsed: {} may refer to data keyrot would move: expected "
                                           "a file without it, or output in another format",
                                           excerpt(name.dump())));
-    // Replaced channels: (animation, channel) -> (track, rotation?).
-    std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, bool>> replaced;
+    // Replaced channels: (animation, channel) -> (track, path).
+    std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, gltf_path>> replaced;
     for (std::size_t i = 0; i < tracks.size(); ++i) {
         const gltf_track_origin& o = source.origins[i];
-        if (o.rotation) replaced[{o.animation, *o.rotation}] = {i, true};
-        if (o.translation) replaced[{o.animation, *o.translation}] = {i, false};
+        if (o.rotation) replaced[{o.animation, *o.rotation}] = {i, gltf_path::rotation};
+        if (o.translation) replaced[{o.animation, *o.translation}] = {i, gltf_path::translation};
+        if (o.scale) replaced[{o.animation, *o.scale}] = {i, gltf_path::scale};
     }
     // The old samplers of replaced channels leave; kept ones are renumbered.
     std::vector<bool> dropped_accessor(top_array(file, "accessors").size(), false);
@@ -292,7 +292,7 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
     }
     if (kept_channels)
         warn.once("gltf-kept",
-                  fmt::format("{} channel{} keyrot does not interpolate (weights, scale) kept as {} were",
+                  fmt::format("{} channel{} keyrot does not interpolate (weights) kept as {} were",
                               kept_channels, kept_channels == 1 ? "" : "s", kept_channels == 1 ? "it" : "they"));
     // An accessor still referred to stays (another sampler, a mesh may share it).
     accessor_refs(json, [&](gltf_json& ref) {
@@ -344,9 +344,9 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
     std::map<std::size_t, std::map<const std::vector<double>*, std::size_t>> inputs;  // per animation
     for (const auto& [at, who] : replaced) {
         const auto [a, c] = at;
-        const auto [i, rotation] = who;
+        const auto [i, path] = who;
         gltf_json& anim = json["animations"][a];
-        anim["channels"][c]["sampler"] = add_sampler(b, anim, tracks[i], rotation, inputs[a]);
+        anim["channels"][c]["sampler"] = add_sampler(b, anim, tracks[i], path, inputs[a]);
     }
 }
 
@@ -406,20 +406,23 @@ public:
     gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
                std::shared_ptr<gltf_source> source, warnings& warn)
         : f_(f), target_(target), out_(out), source_(std::move(source)), warn_(warn) {}
-    void begin_track(const std::string& name, bool, const track_interpolation& written) override {
-        tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
+    void begin_track(const std::string& name, channels, const track_interpolation& written) override {
+        tracks_.push_back({name, written, {}, {}, {}, {}, {}});
     }
     void key_spline(const spline_key& s) override { spline_ = s; }
     void row(const sample& s) override {
         gltf_track& t = tracks_.back();
-        const bool splines = t.how.rotation == method::cubicspline || t.how.translation == method::cubicspline;
         t.times.push_back(s.time);
         t.rotations.push_back(s.rotation);
-        if (splines) t.splines.push_back(spline_);
-        if (!s.translation) return;
-        t.translation_times.push_back(s.time);
-        t.translations.push_back(*s.translation);
-        if (splines) t.translation_splines.push_back(spline_);
+        if (t.how.rotation == method::cubicspline) t.splines.push_back(spline_);
+        const auto put = [&](gltf_vectors& v, const std::optional<vec3>& value, method how, vec3 in, vec3 out) {
+            if (!value) return;
+            v.times.push_back(s.time);
+            v.values.push_back(*value);
+            if (how == method::cubicspline) v.tangents.push_back({in, out});
+        };
+        put(t.translation, s.translation, t.how.translation, spline_.translation_in, spline_.translation_out);
+        put(t.scale, s.scale, t.how.scale, spline_.scale_in, spline_.scale_out);
     }
     void finish() override { write_gltf(tracks_, source_.get(), f_, target_, out_, warn_); }
 

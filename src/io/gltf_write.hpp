@@ -2,6 +2,7 @@
 // glTF 2.0 output: the tracks' rows as animation samplers, in a new file
 // (a node per track) or in place of a glTF input's own samplers, everything
 // else of that file kept.
+#include <array>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -13,16 +14,21 @@
 
 namespace keyrot {
 
+/// A track's translations or scales as a glTF file stores them.
+struct gltf_vectors {
+    std::vector<double> times;  ///< the rows that have one
+    std::vector<vec3> values;
+    std::vector<std::array<vec3, 2>> tangents;  ///< CUBICSPLINE: in and out, one pair per value
+};
+
 /// One track's rows as a glTF file stores them.
 struct gltf_track {
     std::string name;
     track_interpolation how;  ///< slerp is written LINEAR, step STEP, cubicspline CUBICSPLINE
     std::vector<double> times;
     std::vector<quat> rotations;
-    std::vector<spline_key> splines;        ///< CUBICSPLINE: one per row
-    std::vector<double> translation_times;  ///< the rows that have a translation
-    std::vector<vec3> translations;
-    std::vector<spline_key> translation_splines;  ///< CUBICSPLINE translations: one per translation
+    std::vector<spline_key> splines;  ///< CUBICSPLINE rotations: one per row
+    gltf_vectors translation, scale;
 };
 
 /// Writes `tracks` as a glTF file of format `f` (gltf or glb) to `target`

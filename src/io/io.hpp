@@ -79,8 +79,8 @@ enum class time_columns {
 
 /// What a writer must know before the first row.
 struct table_info {
-    bool named = false;        ///< write track names
-    bool translation = false;  ///< some track has a translation
+    bool named = false;  ///< write track names
+    channels carried;    ///< the channels some track carries
     time_columns times = time_columns::frame_and_time;
     bool all_frames = false;  ///< as_given: every row has a frame
     bool any_time = true;     ///< as_given: some row has a time
@@ -101,7 +101,7 @@ public:
     virtual ~table_output() = default;
     /// `written`: how the track's rows are to be interpolated, which a glTF
     /// output states (a table has no place for it).
-    virtual void begin_track(const std::string& name, bool has_translation, const track_interpolation& written) = 0;
+    virtual void begin_track(const std::string& name, channels carried, const track_interpolation& written) = 0;
     /// convert's CUBICSPLINE key, before its row: what a glTF output keeps of it (a table, nothing).
     virtual void key_spline(const spline_key&) {}
     virtual void row(const sample& s) = 0;

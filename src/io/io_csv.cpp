@@ -90,7 +90,7 @@ struct columns {
     std::optional<std::size_t> track, time, frame;
     rep kind = rep::quat;
     std::vector<std::size_t> rotation;  // in (w, x, y, z) order for quaternions
-    std::optional<std::array<std::size_t, 3>> translation;
+    std::optional<std::array<std::size_t, 3>> translation, scale;
 };
 
 std::string column_list(rep r) {
@@ -152,13 +152,17 @@ columns parse_header(const std::vector<std::string_view>& cells, const std::stri
                                              column_list(rep::euler), column_list(rep::matrix)));
     cols.kind = *found;
 
-    const auto tx = claim("tx"), ty = claim("ty"), tz = claim("tz");
-    if (tx || ty || tz) {
-        if (!(tx && ty && tz)) throw input_error(where, "translation needs all of the columns tx ty tz");
-        if (cols.kind == rep::matrix4)
-            throw input_error(where, "4x4 matrix and tx ty tz columns: expected one translation per key");
-        cols.translation = std::array<std::size_t, 3>{*tx, *ty, *tz};
-    }
+    const auto vector_columns = [&](const auto& names, std::string_view what) {
+        std::optional<std::array<std::size_t, 3>> at;
+        const auto x = claim(names[0]), y = claim(names[1]), z = claim(names[2]);
+        if (!x && !y && !z) return at;
+        if (!(x && y && z)) throw input_error(where, fmt::format("{} needs all of the columns {}", what, fmt::join(names, " ")));
+        return at = std::array<std::size_t, 3>{*x, *y, *z};
+    };
+    cols.translation = vector_columns(translation_columns, "translation");
+    if (cols.translation && cols.kind == rep::matrix4)
+        throw input_error(where, "4x4 matrix and tx ty tz columns: expected one translation per key");
+    cols.scale = vector_columns(scale_columns, "scale");
     cols.plain = cols.count <= max_plain_cells && std::all_of(known.begin(), known.end(), [](bool k) { return k; });
     for (std::size_t i = 0; i < cells.size(); ++i)
         if (!known[i])
@@ -204,14 +208,19 @@ public:
         if (!k.time && !k.frame) throw input_error(where(), "no time: expected a 'time' or a 'frame'");
         const auto names = rotation_columns(cols_.kind, quat_order::wxyz);
         for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = number(cols_.rotation[i], names[i]);
-        if (cols_.translation) {
-            const auto& t = *cols_.translation;
-            const int empty = empty_cell(cells, t[0]) + empty_cell(cells, t[1]) + empty_cell(cells, t[2]);
-            if (empty == 0)
-                k.translation = vec3{number(t[0], "tx"), number(t[1], "ty"), number(t[2], "tz")};
+        const auto vector = [&](const std::optional<std::array<std::size_t, 3>>& at, const auto& column) {
+            std::optional<vec3> v;
+            if (!at) return v;
+            const auto& c = *at;
+            const int empty = empty_cell(cells, c[0]) + empty_cell(cells, c[1]) + empty_cell(cells, c[2]);
+            if (empty == 0) v = vec3{number(c[0], column[0]), number(c[1], column[1]), number(c[2], column[2])};
             else if (empty != 3)
-                throw input_error(where(), "columns tx ty tz: expected three numbers or three empty cells");
-        }
+                throw input_error(where(), fmt::format("columns {}: expected three numbers or three empty cells",
+                                                       fmt::join(column, " ")));
+            return v;
+        };
+        k.translation = vector(cols_.translation, translation_columns);
+        k.scale = vector(cols_.scale, scale_columns);
         track.clear();
         if (cols_.track) {
             track = splitter_.text(*cols_.track);
@@ -255,6 +264,7 @@ private:
         if (cols_.frame) k.frame = cell[*cols_.frame];
         for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = cell[cols_.rotation[i]];
         if (const auto& t = cols_.translation) k.translation = vec3{cell[(*t)[0]], cell[(*t)[1]], cell[(*t)[2]]};
+        if (const auto& s = cols_.scale) k.scale = vec3{cell[(*s)[0]], cell[(*s)[1]], cell[(*s)[2]]};
         track = name;
         return true;
     }
@@ -396,7 +406,8 @@ public:
         : out_(out), info_(info), opts_(opts), warn_(warn) {
         frame_ = info.times == time_columns::frame_and_time || (info.times == time_columns::as_given && info.all_frames);
         time_ = info.times != time_columns::as_given || !info.all_frames || info.any_time;
-        translation_ = info.translation && opts.representation != rep::matrix4;
+        translation_ = info.carried.translation && opts.representation != rep::matrix4;
+        scale_ = info.carried.scale;
         std::vector<std::string_view> header;
         if (info.named) header.push_back("track");
         if (frame_) header.push_back("frame");
@@ -404,19 +415,21 @@ public:
         for (auto c : rotation_columns(opts.representation, opts.order)) header.push_back(c);
         if (translation_)
             for (auto c : translation_columns) header.push_back(c);
+        if (scale_)
+            for (auto c : scale_columns) header.push_back(c);
         fmt::format_to(std::back_inserter(out_), "{}{{{}}}\n{}\n", settings_comment, settings_members(info, opts),
                        fmt::join(header, ","));
     }
 
     csv_writer(const csv_writer& other, std::string& out)
         : out_(out), info_(other.info_), opts_(other.opts_), warn_(other.warn_), name_(other.name_),
-          frame_(other.frame_), time_(other.time_), translation_(other.translation_) {}
+          frame_(other.frame_), time_(other.time_), translation_(other.translation_), scale_(other.scale_) {}
 
     std::unique_ptr<table_writer> row_writer(std::string& out) const override {
         return std::make_unique<csv_writer>(*this, out);
     }
 
-    void begin_track(const std::string& name, bool) override { name_ = name; }
+    void begin_track(const std::string& name, channels) override { name_ = name; }
 
     void row(const sample& s) override {
         if (info_.named) append_cell_text(out_, name_), out_ += ',';
@@ -432,13 +445,12 @@ public:
         if (time_) cell(s.time, std::nullopt);
         const rotation_values r = row_values(s, opts_, warn_);
         for (std::size_t i = 0; i < r.size; ++i) cell(r.v[i], opts_.precision);
-        if (translation_) {
-            if (s.translation) {
-                for (double t : {s.translation->x, s.translation->y, s.translation->z}) cell(t, opts_.precision);
-            } else {
-                text.put(",,,");
-            }
-        }
+        const auto vector = [&](const std::optional<vec3>& v) {
+            if (!v) return text.put(",,,");
+            for (double x : {v->x, v->y, v->z}) cell(x, opts_.precision);
+        };
+        if (translation_) vector(s.translation);
+        if (scale_) vector(s.scale);
         text.put('\n');
         text.flush();
     }
@@ -451,7 +463,7 @@ private:
     write_options opts_;
     warnings& warn_;
     std::string name_;
-    bool frame_ = false, time_ = false, translation_ = false;
+    bool frame_ = false, time_ = false, translation_ = false, scale_ = false;
 };
 
 }  // namespace

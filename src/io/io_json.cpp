@@ -376,9 +376,9 @@ public:
         return std::make_unique<json_writer>(*this, out);
     }
 
-    void begin_track(const std::string& name, bool has_translation) override {
+    void begin_track(const std::string& name, channels carried) override {
         name_ = json_quote(name);
-        translation_ = has_translation && opts_.representation != rep::matrix4;
+        translation_ = carried.translation && opts_.representation != rep::matrix4;
         if (lines_) return;
         if (tracks_++) out_ += "]}";
         if (info_.named) fmt::format_to(std::back_inserter(out_), "{}\n{}: {{", tracks_ > 1 ? "," : "", name_);
@@ -404,6 +404,7 @@ public:
             text.put(", \"translation\": ");
             array(text, {s.translation->x, s.translation->y, s.translation->z});
         }
+        if (s.scale) text.put(", \"scale\": "), array(text, {s.scale->x, s.scale->y, s.scale->z});
         text.put(lines_ ? "}\n" : "}");
         text.flush();
     }

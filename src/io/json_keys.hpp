@@ -45,9 +45,10 @@ public:
         const auto quat = obj_.member("quat"), axis = obj_.member("axis"), rotvec = obj_.member("rotvec"),
                    euler = obj_.member("euler"), matrix = obj_.member("matrix"), angle = obj_.member("angle");
         const int rotations = !!quat + !!axis + !!rotvec + !!euler + !!matrix;
-        const auto translation = obj_.member("translation");
+        const auto translation = obj_.member("translation"), scale = obj_.member("scale");
         // Counting the members read finds one that is not, without a look at each.
-        const int read = !!k.time + !!k.frame + rotations + !!angle + !!translation + obj_.member("track").has_value();
+        const int read =
+            !!k.time + !!k.frame + rotations + !!angle + !!translation + !!scale + obj_.member("track").has_value();
         if (obj_.size() > static_cast<std::size_t>(read)) k.unknown = first_unknown_member();
         if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
         if (rotations > 1) fail("more than one rotation: expected exactly one of 'quat', 'axis', 'rotvec', 'euler', 'matrix'");
@@ -84,17 +85,20 @@ public:
         } else {
             read_matrix(*matrix, k);
         }
-        if (translation) {
-            const auto v = numbers(*translation, "translation", 3);
-            k.translation = vec3{v[0], v[1], v[2]};
-        }
+        const auto vector = [this](const std::optional<Value>& member, const char* name) -> std::optional<vec3> {
+            if (!member) return std::nullopt;
+            const auto v = numbers(*member, name, 3);
+            return vec3{v[0], v[1], v[2]};
+        };
+        k.translation = vector(translation, "translation");
+        k.scale = vector(scale, "scale");
         return k;
     }
 
 private:
     std::string first_unknown_member() const {
-        constexpr std::array<std::string_view, 11> known = {"time", "t",     "frame",  "quat",        "axis", "angle",
-                                                            "rotvec", "euler", "matrix", "translation", "track"};
+        constexpr std::array<std::string_view, 12> known = {"time",   "t",     "frame",  "quat",        "axis",  "angle",
+                                                            "rotvec", "euler", "matrix", "translation", "scale", "track"};
         std::string name;
         obj_.members([&](std::string_view member, Value) {
             if (name.empty() && std::find(known.begin(), known.end(), member) == known.end())

@@ -21,6 +21,7 @@ struct gltf_source;
 /// For rep::matrix4 these are m00..m33 (translation included).
 std::span<const std::string_view> rotation_columns(rep r, quat_order order) noexcept;
 inline constexpr std::array<std::string_view, 3> translation_columns = {"tx", "ty", "tz"};
+inline constexpr std::array<std::string_view, 3> scale_columns = {"sx", "sy", "sz"};
 
 /// Reorder 4 values between file order and (w, x, y, z).
 std::array<double, 4> from_quat_order(std::array<double, 4> v, quat_order order) noexcept;

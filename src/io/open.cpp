@@ -35,8 +35,8 @@ public:
                 const write_options& opts, warnings& warn)
         : sink_(path, out), writer_(make_writer(f, sink_.text(), info, opts, warn)),
           rows_(*writer_, sink_, detail::formatting_threads()) {}
-    void begin_track(const std::string& name, bool has_translation, const track_interpolation&) override {
-        rows_.begin_track(name, has_translation);
+    void begin_track(const std::string& name, channels carried, const track_interpolation&) override {
+        rows_.begin_track(name, carried);
     }
     void row(const sample& s) override { rows_.row(s); }
     void finish() override {

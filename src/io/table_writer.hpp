@@ -13,7 +13,7 @@ namespace keyrot {
 class table_writer {
 public:
     virtual ~table_writer() = default;
-    virtual void begin_track(const std::string& name, bool has_translation) = 0;
+    virtual void begin_track(const std::string& name, channels carried) = 0;
     virtual void row(const sample& s) = 0;
     virtual void finish() = 0;
     /// For formatting rows on several threads: a writer of the same rows into

@@ -68,6 +68,10 @@ bool same_bits(std::optional<double> a, std::optional<double> b) {
     return a.has_value() == b.has_value() && (!a || std::memcmp(&*a, &*b, sizeof(double)) == 0);
 }
 
+bool same_vector(const std::optional<keyrot::vec3>& a, const std::optional<keyrot::vec3>& b) {
+    return a.has_value() == b.has_value() && (!a || std::memcmp(&*a, &*b, sizeof(keyrot::vec3)) == 0);
+}
+
 /// Both unread, or the same tracks of the same keys, to the bit.
 bool same_keys(const std::optional<keyrot::document>& a, const std::optional<keyrot::document>& b) {
     if (!a || !b) return !a && !b;
@@ -79,9 +83,7 @@ bool same_keys(const std::optional<keyrot::document>& a, const std::optional<key
             const bool same = x[i].at.line == y[i].at.line && x[i].given_as == y[i].given_as &&
                               same_bits(x[i].time, y[i].time) && same_bits(x[i].frame, y[i].frame) &&
                               std::memcmp(&x[i].rotation, &y[i].rotation, sizeof(keyrot::quat)) == 0 &&
-                              x[i].translation.has_value() == y[i].translation.has_value() &&
-                              (!x[i].translation ||
-                               std::memcmp(&*x[i].translation, &*y[i].translation, sizeof(keyrot::vec3)) == 0);
+                              same_vector(x[i].translation, y[i].translation) && same_vector(x[i].scale, y[i].scale);
             if (!same) return false;
         }
     }

@@ -26,6 +26,7 @@ std::string describe(const std::string& track, const keyrot::key_settings& s, co
                                   s.euler ? s.euler->name : "-", s.key_fps, k.at.path, number(k.time),
                                   number(k.frame), static_cast<int>(k.kind), fmt::join(k.values, " "));
     if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
+    if (k.scale) out += fmt::format(" scale {} {} {}", k.scale->x, k.scale->y, k.scale->z);
     return out + '\n';
 }
 

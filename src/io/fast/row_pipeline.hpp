@@ -135,9 +135,9 @@ public:
         stop();
         for (auto& w : workers_) w->thread.join();
     }
-    void begin_track(const std::string& name, bool translation) {
-        current_ = track_begin{batch_.rows.size(), name, translation};
-        if (workers_.empty()) return writer_.begin_track(name, translation);
+    void begin_track(const std::string& name, channels carried) {
+        current_ = track_begin{batch_.rows.size(), name, carried};
+        if (workers_.empty()) return writer_.begin_track(name, carried);
         batch_.begins.push_back(*current_);
     }
     void row(const sample& s) {
@@ -164,7 +164,7 @@ private:
     struct track_begin {
         std::size_t before_row;
         std::string name;
-        bool translation;
+        channels carried;
     };
     struct batch {
         std::size_t number = 0;
@@ -189,7 +189,7 @@ private:
             workers.push_back(std::move(w));
         }
         batch_.rows.reserve(batch_rows);
-        if (current_) batch_.resumed = track_begin{0, current_->name, current_->translation};
+        if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
         workers_.reserve(workers.size());
         for (auto& w : workers) {
             if (!try_start_thread(w->thread, [this, &w = *w] { consume(w); })) break;
@@ -203,7 +203,7 @@ private:
         queue_.push_back(std::move(batch_));
         batch_ = batch{};
         batch_.number = ++batches_;
-        if (current_) batch_.resumed = track_begin{0, current_->name, current_->translation};
+        if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
         if (spare_rows_.empty()) {
             batch_.rows.reserve(batch_rows);
         } else {
@@ -253,11 +253,11 @@ private:
     }
     void format(const batch& b, worker& w) {
         table_writer& writer = w.own ? *w.own : writer_;
-        if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->translation);
+        if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->carried);
         std::size_t next_begin = 0;
         for (std::size_t i = 0; i <= b.rows.size(); ++i) {
             for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
-                writer.begin_track(b.begins[next_begin].name, b.begins[next_begin].translation);
+                writer.begin_track(b.begins[next_begin].name, b.begins[next_begin].carried);
             if (i == b.rows.size()) break;
             writer.row(b.rows[i]);
             if (!w.own) out_.maybe_flush();
