@@ -50,8 +50,12 @@ std::string formats_help() {
            "translation and scale channels interpolated as their samplers say (LINEAR, STEP, CUBICSPLINE). A glTF\n"
            "output of a glTF input is that file with its samplers replaced; of any other input, a new file with a\n"
            "node per track.\n"
-           "\nA file's format is known by its extension (.csv, .json, .ndjson or .jsonl, .gltf, .glb), else by its\n"
-           "content.\n"
+           "\nBVH (.bvh): each joint with channels is a track named after it, its rotation channels the intrinsic\n"
+           "Euler sequence of their order (Zrotation Xrotation Yrotation: ZXY, in degrees), its position channels\n"
+           "the translation; frame f at f / rate. A BVH output needs a BVH input, whose hierarchy it keeps; its\n"
+           "angles are continuous from frame to frame.\n"
+           "\nA file's format is known by its extension (.csv, .json, .ndjson or .jsonl, .gltf, .glb, .bvh), else by\n"
+           "its content.\n"
            "keyrot reads all it writes: a JSON document with \"frames\" in place of \"keys\", and \"# keyrot {...}\" "
            "lines\nstating the settings of a CSV file.\n";
     return out;

@@ -27,6 +27,9 @@ TEST_CASE("formats by name, extension and content") {
     CHECK(sniff_format("[{\"time\": 0}]") == format::json);
     CHECK(sniff_format("{\"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1, \"quat\": [1,0,0,0]}\n") == format::ndjson);
     CHECK(sniff_format("{\"keys\": []}\n") == format::json);
+    CHECK(format_of_path("take.BVH") == format::bvh);
+    CHECK(sniff_format("\xEF\xBB\xBF\r\nHIERARCHY\r\nROOT Hips\r\n") == format::bvh);
+    CHECK(sniff_format("hierarchy\n") == format::bvh);
 }
 
 TEST_CASE("CSV: columns in any order and case, comments, blank lines, BOM, CRLF") {

@@ -500,7 +500,7 @@ def check_new_files(work, written):
     global checks
     data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
     for name in sorted(os.listdir(data)):
-        if not name.endswith((".csv", ".json")):
+        if not name.endswith((".csv", ".json", ".bvh")):
             continue
         source = os.path.join(data, name)
         for how in ("glb", "gltf"):

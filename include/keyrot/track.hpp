@@ -122,6 +122,8 @@ struct sample {
     std::optional<vec3> translation;
     std::optional<vec3> scale = std::nullopt;
     bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
+    /// Euler output with --euler-continuous: the angles to write (radians).
+    std::optional<std::array<double, 3>> euler = std::nullopt;
 };
 
 /// One key converted and validated on its own: rotation to a unit

@@ -27,6 +27,7 @@ struct options {
     bool radians = false;
     std::optional<angle_unit> out_angles;  ///< --out-degrees / --out-radians
     std::optional<int> precision;
+    bool euler_continuous = false;  ///< --euler-continuous
     bool strict = false;
     double fps = 24;
     std::optional<double> key_fps;  ///< defaults to fps

@@ -8,6 +8,7 @@
 
 #include "app/commands.hpp"
 #include "app/plan.hpp"
+#include "io/bvh.hpp"
 #include "io/document.hpp"
 #include "io/layout.hpp"
 #include "keyrot/describe.hpp"
@@ -38,19 +39,27 @@ std::vector<std::pair<std::string_view, std::string_view>> interpolations(const 
     return out;
 }
 
-std::string info_text(const document& doc, const std::vector<track_info>& infos, std::optional<int> precision) {
+/// `bvh`: a BVH file's hierarchy and motion header (tracks[i] is joints[i]).
+std::string info_text(const document& doc, const std::vector<track_info>& infos, std::optional<int> precision,
+                      const bvh_source* bvh) {
     auto num = [precision](double v) {
         std::string s;
         append_number(s, v, precision.value_or(6));
         return s;
     };
     // (printable: a file name's control bytes must not reach a terminal raw)
-    std::string out = fmt::format("{}: {} track{}, {}\n", printable(doc.source), infos.size(), infos.size() == 1 ? "" : "s",
-                                  to_string(doc.fmt));
+    std::string out = fmt::format("{}: {} track{}, {}{}\n", printable(doc.source), infos.size(),
+                                  infos.size() == 1 ? "" : "s", to_string(doc.fmt),
+                                  bvh ? fmt::format(", {} frames at {} fps (Frame Time {})", bvh->frames, num(bvh->fps),
+                                                    num(bvh->frame_time))
+                                      : "");
     for (std::size_t n = 0; n < infos.size(); ++n) {
         const track_info& t = infos[n];
         out += fmt::format("{}: {} key{}, {} s to {} s, given as {}\n", t.name.empty() ? "track" : "track " + t.name,
                            t.keys, t.keys == 1 ? "" : "s", num(t.start), num(t.end), rep_list(t.given_as));
+        if (bvh)
+            out += fmt::format("  channels: {} (Euler {})\n", fmt::join(bvh->joints[n].channels, " "),
+                               bvh->joints[n].euler.name);
         if (doc.tracks[n].interpolation) {
             std::vector<std::string> each;
             for (const auto& [channel, how] : interpolations(doc.tracks[n])) each.push_back(fmt::format("{} {}", channel, how));
@@ -70,7 +79,7 @@ std::string info_text(const document& doc, const std::vector<track_info>& infos,
     return out;
 }
 
-std::string info_json(const document& doc, const std::vector<track_info>& infos) {
+std::string info_json(const document& doc, const std::vector<track_info>& infos, const bvh_source* bvh) {
     auto num = [](double v) {
         std::string s;
         append_number(s, v, std::nullopt);
@@ -78,7 +87,11 @@ std::string info_json(const document& doc, const std::vector<track_info>& infos)
     };
     auto list = [](const std::vector<std::size_t>& v) { return fmt::format("[{}]", fmt::join(v, ", ")); };
     std::string out = "{\"source\": " + json_quote(doc.source) + ", \"format\": \"" +
-                      std::string(to_string(doc.fmt)) + "\", \"tracks\": [";
+                      std::string(to_string(doc.fmt)) + "\", ";
+    if (bvh)
+        out += fmt::format("\"frames\": {}, \"fps\": {}, \"frame_time\": {}, ", bvh->frames, num(bvh->fps),
+                           num(bvh->frame_time));
+    out += "\"tracks\": [";
     for (std::size_t n = 0; n < infos.size(); ++n) {
         const track_info& t = infos[n];
         std::vector<std::string> reps, segments;
@@ -93,6 +106,12 @@ std::string info_json(const document& doc, const std::vector<track_info>& infos)
             for (const auto& [channel, how] : interpolations(doc.tracks[n]))
                 each.push_back(fmt::format("\"{}\": \"{}\"", channel, how));
             interpolation = fmt::format(", \"interpolation\": {{{}}}", fmt::join(each, ", "));
+        }
+        if (bvh) {
+            std::vector<std::string> names;
+            for (const std::string& c : bvh->joints[n].channels) names.push_back(json_quote(c));
+            interpolation += fmt::format(", \"channels\": [{}], \"euler\": \"{}\"", fmt::join(names, ", "),
+                                         bvh->joints[n].euler.name);
         }
         out += fmt::format(
             "{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}], \"segments\": [{}], "
@@ -118,7 +137,8 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
             const document doc = read_input(o, src, warn);
             std::vector<track_info> infos;
             for (const track& t : doc.tracks) infos.push_back(describe(t));
-            text += as_json ? info_json(doc, infos) : info_text(doc, infos, o.precision);
+            const auto bvh = doc.fmt == format::bvh ? read_bvh_source(*src.open(), reading(o, src.source())) : nullptr;
+            text += as_json ? info_json(doc, infos, bvh.get()) : info_text(doc, infos, o.precision, bvh.get());
         } catch (const usage_error&) {
             throw;
         } catch (const error& e) {

@@ -36,6 +36,7 @@ write_options writing(const options& o, const std::optional<euler_seq>& input_eu
     w.angles = o.out_angles.value_or(o.radians ? angle_unit::radians : angle_unit::degrees);
     w.order = o.order;
     w.precision = o.precision;
+    w.euler_continuous = o.euler_continuous;
     if (w.representation == rep::euler) {
         w.euler = o.out_euler ? o.out_euler : input_euler;
         if (!w.euler) throw usage_error("--rep euler needs an Euler sequence: expected --out-euler SEQ or --euler SEQ");

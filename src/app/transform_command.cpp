@@ -21,6 +21,7 @@
 #include "app/plan.hpp"
 #include "ground/held_warnings.hpp"
 #include "ground/thread_start.hpp"
+#include "io/bvh.hpp"
 #include "io/document.hpp"
 #include "io/gltf.hpp"
 #include "io/open.hpp"
@@ -213,6 +214,8 @@ struct transform_plan {
 write_options writing_for(const transform_plan& p, const input_source& src, const document_facts& d, warnings& warn) {
     write_options w = writing(p.flags, d.tracks.front().euler);
     if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = read_gltf_source(*src.open(), p.in, p.reading, warn);
+    // A BVH output keeps the input's hierarchy; a glTF output makes it the nodes.
+    if ((p.out == format::bvh || is_gltf(p.out)) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);
     return w;
 }
 

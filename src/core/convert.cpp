@@ -245,6 +245,25 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
     return out;
 }
 
+std::array<double, 3> continuous_euler(quat q, const euler_seq& seq, const std::array<double, 3>& previous) noexcept {
+    constexpr double pi = std::numbers::pi, turn = 2 * std::numbers::pi;
+    const auto& a = to_euler(q, seq).angles;
+    const bool proper = seq.axes[0] == seq.axes[2];
+    std::array<std::array<double, 3>, 2> candidates = {a, {a[0] + pi, proper ? -a[1] : pi - a[1], a[2] + pi}};
+    double best_move = 0;
+    std::size_t best = 0;
+    for (std::size_t c = 0; c < 2; ++c) {
+        double move = 0;
+        for (std::size_t i = 0; i < 3; ++i) {
+            double& x = candidates[c][i];
+            x += turn * std::round((previous[i] - x) / turn);
+            move += std::fabs(x - previous[i]);
+        }
+        if (c == 0 || move < best_move) best_move = move, best = c;
+    }
+    return candidates[best];
+}
+
 KEYROT_FMA_CLONES mat3 to_matrix(quat q) noexcept {
     // The homogeneous form (entries over |q|^2) is exact for a quaternion
     // whose norm is a rounding error away from 1, and each entry is summed

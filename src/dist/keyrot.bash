@@ -20,7 +20,7 @@ _keyrot() {
 
     local input="--from --strict --key-fps --max-bytes --animation"
     local conventions="--euler --quat-order --radians"
-    local output="-o --output --to --rep --out-euler --out-degrees --out-radians --precision $conventions"
+    local output="-o --output --to --rep --out-euler --out-degrees --out-radians --precision --euler-continuous $conventions"
     local interpolation="--method --path"
     local flags
     case $command in
@@ -37,8 +37,8 @@ _keyrot() {
     local euler="XYZ XZY YXZ YZX ZXY ZYX XYX XZX YXY YZY ZXZ ZYZ xyz xzy yxz yzx zxy zyx xyx xzx yxy yzy zxz zyz"
     local values
     case $prev in
-        --from) values="csv json ndjson gltf glb" ;;
-        --to) [[ $command == info ]] && values="json" || values="csv json ndjson gltf glb" ;;
+        --from) values="csv json ndjson gltf glb bvh" ;;
+        --to) [[ $command == info ]] && values="json" || values="csv json ndjson gltf glb bvh" ;;
         --rep) values="axis-angle quat rotvec euler matrix matrix4" ;;
         --from-rep) values="quat axis-angle rotvec euler" ;;
         --method) values="slerp nlerp squad step euler" ;;

@@ -39,6 +39,7 @@ format sniff_format(std::string_view text) {
     text = without_bom(text);
     const auto start = text.find_first_not_of(" \t\r\n");
     if (start == std::string_view::npos) return format::csv;
+    if (ascii_lower(text.substr(start, 9)) == "hierarchy") return format::bvh;
     if (text[start] == '[') return format::json;
     if (text[start] != '{') return format::csv;
     if (has_asset_object(text) && text.find("\"version\"") != std::string_view::npos) return format::gltf;

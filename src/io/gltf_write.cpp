@@ -214,22 +214,37 @@ gltf_json channel(std::size_t sampler, std::size_t node, const char* path) {
     return c;
 }
 
-/// A new file: a node per track, one animation.
-gltf_json new_file(const std::vector<gltf_track>& tracks, buffer_builder& b, gltf_json& json) {
+/// A new file: the nodes of `skeleton`, or a node per track, and one animation.
+gltf_json new_file(const std::vector<gltf_track>& tracks, std::vector<gltf_node> skeleton, buffer_builder& b,
+                   gltf_json& json) {
+    if (skeleton.empty())
+        for (std::size_t i = 0; i < tracks.size(); ++i)
+            skeleton.push_back({tracks[i].name.empty() ? "track" : tracks[i].name, std::nullopt, {}, i});
+    if (std::count_if(skeleton.begin(), skeleton.end(), [](const gltf_node& n) { return n.track.has_value(); }) !=
+        static_cast<std::ptrdiff_t>(tracks.size()))
+        throw input_error(b.source, fmt::format("{} tracks for a skeleton of {} nodes: expected a track per animated "
+                                                "joint", tracks.size(), skeleton.size()));
     json["asset"] = {{"version", "2.0"}, {"generator", "keyrot"}};
     json["scene"] = 0;
     json["scenes"] = gltf_json::array({{{"nodes", gltf_json::array()}}});
     json["nodes"] = gltf_json::array();
     gltf_json animation = {{"channels", gltf_json::array()}, {"samplers", gltf_json::array()}};
     std::map<const std::vector<double>*, std::size_t> inputs;
-    for (std::size_t i = 0; i < tracks.size(); ++i) {
-        json_quote(tracks[i].name);  // throws for a name that is not UTF-8, which JSON cannot hold
-        json["nodes"].push_back({{"name", tracks[i].name.empty() ? "track" : tracks[i].name}});
-        json["scenes"][0]["nodes"].push_back(i);
+    for (std::size_t k = 0; k < skeleton.size(); ++k) {
+        const gltf_node& n = skeleton[k];
+        json_quote(n.name);  // throws for a name that is not UTF-8, which JSON cannot hold
+        gltf_json node = {{"name", n.name}};
+        const vec3& t = n.translation;
+        if (t.x != 0 || t.y != 0 || t.z != 0)
+            for (const double x : {t.x, t.y, t.z}) node["translation"].push_back(single(x, b.source, "offset"));
+        json["nodes"].push_back(std::move(node));
+        if (n.parent) json["nodes"][*n.parent]["children"].push_back(k);
+        else json["scenes"][0]["nodes"].push_back(k);
+        if (!n.track) continue;
+        const gltf_track& track = tracks[*n.track];
         for (const gltf_path p : {gltf_path::rotation, gltf_path::translation, gltf_path::scale})
-            if (p == gltf_path::rotation || !(p == gltf_path::translation ? tracks[i].translation : tracks[i].scale)
-                                                  .values.empty())
-                animation["channels"].push_back(channel(add_sampler(b, animation, tracks[i], p, inputs), i, path_name(p)));
+            if (p == gltf_path::rotation || !(p == gltf_path::translation ? track.translation : track.scale).values.empty())
+                animation["channels"].push_back(channel(add_sampler(b, animation, track, p, inputs), k, path_name(p)));
     }
     return animation;
 }
@@ -404,8 +419,8 @@ std::string base64(std::string_view bytes) {
 class gltf_table final : public table_output {
 public:
     gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
-               std::shared_ptr<gltf_source> source, warnings& warn)
-        : f_(f), target_(target), out_(out), source_(std::move(source)), warn_(warn) {}
+               std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton, warnings& warn)
+        : f_(f), target_(target), out_(out), source_(std::move(source)), skeleton_(std::move(skeleton)), warn_(warn) {}
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
         tracks_.push_back({name, written, {}, {}, {}, {}, {}});
     }
@@ -424,13 +439,14 @@ public:
         put(t.translation, s.translation, t.how.translation, spline_.translation_in, spline_.translation_out);
         put(t.scale, s.scale, t.how.scale, spline_.scale_in, spline_.scale_out);
     }
-    void finish() override { write_gltf(tracks_, source_.get(), f_, target_, out_, warn_); }
+    void finish() override { write_gltf(tracks_, source_.get(), skeleton_, f_, target_, out_, warn_); }
 
 private:
     format f_;
     std::optional<std::string> target_;
     std::ostream& out_;
     std::shared_ptr<gltf_source> source_;
+    std::vector<gltf_node> skeleton_;
     warnings& warn_;
     std::vector<gltf_track> tracks_;
     spline_key spline_;
@@ -439,11 +455,12 @@ private:
 }  // namespace
 
 std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
-                                              std::shared_ptr<gltf_source> source, warnings& warn) {
-    return std::make_unique<gltf_table>(f, target, out, std::move(source), warn);
+                                              std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton,
+                                              warnings& warn) {
+    return std::make_unique<gltf_table>(f, target, out, std::move(source), std::move(skeleton), warn);
 }
 
-void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, format f,
+void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, const std::vector<gltf_node>& skeleton, format f,
                 const std::optional<std::string>& target, std::ostream& out, warnings& warn) {
     gltf_json json = source ? source->file.json : gltf_json::object();
     buffer_builder b(json, warn.source());
@@ -459,7 +476,7 @@ void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, form
         }
         move_image_uris(json, source->file.directory, target);
     } else {
-        json["animations"] = gltf_json::array({new_file(tracks, b, json)});
+        json["animations"] = gltf_json::array({new_file(tracks, skeleton, b, json)});
     }
     buffer.erase("uri");
     buffer["byteLength"] = b.bytes.size();

@@ -31,19 +31,31 @@ struct gltf_track {
     gltf_vectors translation, scale;
 };
 
+/// A node of a new file's skeleton (a BVH hierarchy), and the track that
+/// animates it, if any.
+struct gltf_node {
+    std::string name;
+    std::optional<std::size_t> parent;  ///< an earlier node
+    vec3 translation;                   ///< its rest offset from the parent
+    std::optional<std::size_t> track;
+};
+
 /// Writes `tracks` as a glTF file of format `f` (gltf or glb) to `target`
 /// (a .gltf's buffer to the .bin of the same name beside it, both replaced
 /// only once both are written) or to `out` (a .gltf with its buffer as a
 /// data: URI). With `source`, the glTF input the tracks were read from
 /// (tracks[i] is its track i), that file is written with the samplers of
 /// the channels keyrot read replaced and all else kept; otherwise a new
-/// file with a node per track and one animation. Throws keyrot::error.
-void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, format f,
+/// file with the nodes of `skeleton` (none: a node per track) and one
+/// animation. Throws keyrot::error.
+void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, const std::vector<gltf_node>& skeleton,
+                format f,
                 const std::optional<std::string>& target, std::ostream& out, warnings& warn);
 
 /// The rows of the tracks gathered as gltf_tracks (32-bit floats are what
 /// glTF keeps of them), written by write_gltf at finish().
 std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
-                                              std::shared_ptr<gltf_source> source, warnings& warn);
+                                              std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton,
+                                              warnings& warn);
 
 }  // namespace keyrot

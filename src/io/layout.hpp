@@ -15,6 +15,7 @@
 namespace keyrot {
 
 struct gltf_source;
+struct bvh_source;
 
 /// CSV columns of a representation's rotation, in output order:
 /// rotation_columns(rep::axis_angle, ...) = {"ax", "ay", "az", "angle"}.
@@ -34,6 +35,10 @@ struct write_options {
     std::optional<int> precision;  ///< digits after the point; none = shortest round trip
     /// glTF output: the glTF input it rewrites (none: a new file).
     std::shared_ptr<gltf_source> gltf = nullptr;
+    /// BVH output, and glTF output of a BVH input: the hierarchy of the BVH input.
+    std::shared_ptr<bvh_source> bvh = nullptr;
+    /// Euler output: each row's angles nearest the row's before (continuous_euler).
+    bool euler_continuous = false;
 };
 
 /// A rotation's values in column order, angles in the output unit.
@@ -42,8 +47,10 @@ struct rotation_values {
     std::size_t size = 0;
     bool gimbal_lock = false;
 };
-/// `translation` is used by rep::matrix4 only (zero when absent).
-rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts);
+/// `translation` is used by rep::matrix4 only (zero when absent); `euler`
+/// (radians), by rep::euler in place of the canonical angles of `q`.
+rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts,
+                          const std::optional<std::array<double, 3>>& euler = std::nullopt);
 
 /// Appends v in the shortest form that reads back to the same double, or
 /// rounded to `precision` decimals without trailing zeros: append_number(s,

@@ -68,7 +68,8 @@ bool line_reader::read(std::string_view& line) {
         }
         searched = begin_ + offset;
     }
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    crlf_ = !line.empty() && line.back() == '\r';
+    if (crlf_) line.remove_suffix(1);
     ++number_;
     return true;
 }

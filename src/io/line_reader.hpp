@@ -19,6 +19,8 @@ public:
     /// number() is its 1-based number.
     bool next(std::string_view& line);
     std::size_t number() const noexcept { return number_; }
+    /// The line read last ended in "\r\n" (the '\r' dropped).
+    bool crlf() const noexcept { return crlf_; }
     /// The next call of next() gives the line it gave last once more, with
     /// its number: a line read to learn what it is (a header, or the first
     /// key), then read as a key.
@@ -34,7 +36,7 @@ private:
     std::string buf_;
     std::size_t begin_ = 0, end_ = 0;  // unread bytes in buf_
     std::size_t number_ = 0;
-    bool at_start_ = true, at_end_ = false;
+    bool at_start_ = true, at_end_ = false, crlf_ = false;
     std::string_view last_;  // the line next() gave last
     bool held_ = false;      // put back: next() gives last_ again
 };

@@ -1,5 +1,7 @@
 #include "io/open.hpp"
 
+#include "io/bvh.hpp"
+#include "io/bvh_write.hpp"
 #include "io/fast/json_stream.hpp"
 #include "io/gltf.hpp"
 #include "io/gltf_write.hpp"
@@ -13,6 +15,7 @@ namespace keyrot {
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn,
                                             std::function<bool()> parse_ahead) {
     if (is_gltf(f)) return make_gltf_reader(in, f, opts, warn);
+    if (f == format::bvh) return make_bvh_reader(in, opts);
     std::unique_ptr<line_key_reader> reader = f == format::json     ? make_json_reader(in, opts, warn)
                                               : f == format::ndjson ? make_ndjson_reader(in, opts, warn)
                                                                     : make_csv_reader(in, opts, warn);
@@ -51,12 +54,52 @@ private:
     detail::row_pipeline rows_;
 };
 
+/// --euler-continuous: each row's Euler angles the ones nearest the row's
+/// before in its track, worked out here, in row order, so that rows can
+/// then be formatted on any thread.
+class continuous_euler_table final : public table_output {
+public:
+    continuous_euler_table(std::unique_ptr<table_output> rows, euler_seq seq)
+        : rows_(std::move(rows)), seq_(std::move(seq)) {}
+    void begin_track(const std::string& name, channels carried, const track_interpolation& written) override {
+        previous_.reset();
+        rows_->begin_track(name, carried, written);
+    }
+    void row(const sample& s) override {
+        sample r = s;
+        r.euler = previous_ ? continuous_euler(s.rotation, seq_, *previous_) : to_euler(s.rotation, seq_).angles;
+        previous_ = r.euler;
+        rows_->row(r);
+    }
+    void finish() override { rows_->finish(); }
+
+private:
+    std::unique_ptr<table_output> rows_;
+    euler_seq seq_;
+    std::optional<std::array<double, 3>> previous_;
+};
+
 }  // namespace
 
 std::unique_ptr<table_output> open_table(format f, const std::optional<std::string>& path, std::ostream& out,
                                          const table_info& info, const write_options& opts, warnings& warn) {
-    if (is_gltf(f)) return make_gltf_table(f, path, out, opts.gltf, warn);
-    return std::make_unique<piped_table>(f, path, out, info, opts, warn);
+    if (is_gltf(f)) {
+        // From BVH: its hierarchy as the nodes, offsets as their translations.
+        std::vector<gltf_node> skeleton;
+        if (opts.bvh)
+            for (const bvh_node& n : opts.bvh->nodes) skeleton.push_back({n.name, n.parent, n.offset, n.joint});
+        return make_gltf_table(f, path, out, opts.gltf, std::move(skeleton), warn);
+    }
+    if (f == format::bvh) {
+        if (!opts.bvh)
+            throw input_error(warn.source(), "BVH output needs a BVH input, whose hierarchy it keeps: expected a .bvh "
+                                             "input, or another output format");
+        return make_bvh_table(path, out, opts.bvh, info, opts, warn);
+    }
+    auto table = std::make_unique<piped_table>(f, path, out, info, opts, warn);
+    if (opts.euler_continuous && opts.representation == rep::euler)
+        return std::make_unique<continuous_euler_table>(std::move(table), *opts.euler);
+    return table;
 }
 
 }  // namespace keyrot

@@ -1,0 +1,363 @@
+#include "io/bvh.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <set>
+
+#include "ground/text.hpp"
+#include "io/line_reader.hpp"
+
+namespace keyrot {
+namespace {
+
+/// The words of a line, split at spaces and tabs.
+std::vector<std::string_view> words(std::string_view line) {
+    std::vector<std::string_view> out;
+    std::size_t i = 0;
+    while (true) {
+        i = line.find_first_not_of(" \t", i);
+        if (i == std::string_view::npos) return out;
+        const std::size_t end = std::min(line.find_first_of(" \t", i), line.size());
+        out.push_back(line.substr(i, end - i));
+        i = end;
+    }
+}
+
+bool is(std::string_view word, std::string_view keyword) { return ascii_lower(word) == ascii_lower(keyword); }
+
+/// 0..2: X/Y/Z position, 3..5: X/Y/Z rotation; -1 for another name.
+int channel_kind(std::string_view name) {
+    const std::string n = ascii_lower(name);
+    if (n.size() != 9 || (n[0] != 'x' && n[0] != 'y' && n[0] != 'z')) return -1;
+    const int axis = n[0] - 'x';
+    if (n.substr(1) == "position") return axis;
+    if (n.substr(1) == "rotation") return 3 + axis;
+    return -1;
+}
+
+/// The rate of a Frame Time as written: the whole number of frames per
+/// second whose frame time, rounded to the decimals written, is the one
+/// written (0.0083333 is 120 fps), else its reciprocal.
+double rate_of(std::string_view written, double frame_time) {
+    const double exact = 1 / frame_time;
+    const auto point = written.find('.');
+    if (point == std::string_view::npos || written.find_first_of("eE") != std::string_view::npos) return exact;
+    const auto decimals = static_cast<int>(written.size() - point - 1);
+    const double whole = std::round(exact);
+    if (whole < 1) return exact;
+    return std::fabs(1 / whole - frame_time) <= 0.5 * std::pow(10.0, -decimals) * (1 + 1e-9) ? whole : exact;
+}
+
+/// Reads the hierarchy and the motion's header from `lines`, which then
+/// stand at the first frame line.
+class header_parser {
+public:
+    header_parser(line_reader& lines, const std::string& source) : lines_(lines), source_(source) {}
+
+    bvh_source parse() {
+        std::string_view line;
+        bool started = false;
+        while (lines_.next(line)) {
+            const auto w = words(line);
+            if (w.empty()) {
+                keep(line);
+                continue;
+            }
+            if (!started) {
+                if (!is(w[0], "HIERARCHY") || w.size() != 1)
+                    fail(fmt::format("'{}': expected HIERARCHY, the start of a BVH file", excerpt(trim(line))));
+                started = true;
+                keep(line);
+                continue;
+            }
+            if (is(w[0], "MOTION")) {
+                if (expect_brace_) fail("MOTION: expected '{'");
+                if (!open_.empty()) fail(fmt::format("MOTION inside '{}': expected its '}}' first", block_name()));
+                if (out_.joints.empty() && !roots_) fail("MOTION before any ROOT: expected a joint hierarchy");
+                motion_header();
+                return std::move(out_);
+            }
+            for (std::size_t i = 0; i < w.size(); ++i) i = word(w, i);
+            keep(line);
+        }
+        fail(started ? "no MOTION section: expected MOTION, Frames and Frame Time after the hierarchy"
+                     : "no HIERARCHY: expected a BVH file");
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& what) const {
+        throw input_error(fmt::format("{}:{}", source_, lines_.number()), what);
+    }
+
+    /// A ROOT, JOINT or End Site, the child of the open block; the next '{' opens it.
+    void add_node(std::string name) {
+        out_.nodes.push_back({std::move(name), open_.empty() ? std::nullopt : std::optional(open_.back()), {}, {}});
+        expect_brace_ = true;
+    }
+
+    const std::string& block_name() const { return out_.nodes[open_.back()].name; }
+
+    void keep(std::string_view line) {
+        out_.hierarchy.append(line);
+        out_.hierarchy += lines_.crlf() ? "\r\n" : "\n";
+        if (lines_.crlf()) out_.newline = "\r\n";
+    }
+
+    /// The word at w[i] and those it takes; returns the index of the last one taken.
+    std::size_t word(const std::vector<std::string_view>& w, std::size_t i) {
+        const std::string_view k = w[i];
+        if (k == "{") {
+            if (!expect_brace_) fail("'{' without ROOT, JOINT or End Site before it");
+            expect_brace_ = false;
+            open_.push_back(out_.nodes.size() - 1);
+            return i;
+        }
+        if (expect_brace_) fail(fmt::format("'{}': expected '{{'", excerpt(k)));
+        if (k == "}") {
+            if (open_.empty()) fail("'}' without a matching '{'");
+            open_.pop_back();
+            in_joint_ = false;
+            return i;
+        }
+        if (is(k, "ROOT") || is(k, "JOINT")) {
+            const bool root = is(k, "ROOT");
+            if (root != open_.empty())
+                fail(root ? "ROOT inside a joint: expected JOINT" : "JOINT outside a ROOT: expected ROOT first");
+            std::size_t end = i + 1;
+            while (end < w.size() && w[end] != "{") ++end;
+            if (end == i + 1) fail(fmt::format("{} without a name: expected a joint name", k));
+            const std::string name(w[i + 1].data(), static_cast<std::size_t>(w[end - 1].end() - w[i + 1].begin()));
+            check_track_name(name, fmt::format("{}:{}", source_, lines_.number()));
+            add_node(name);
+            // Two joints of one name are two tracks: the second is "<name>#<its line>".
+            const std::string track = names_.insert(name).second ? name : fmt::format("{}#{}", name, lines_.number());
+            names_.insert(track);
+            joint_ = {track, lines_.number(), {}, {}, {}, false};
+            in_joint_ = true;
+            roots_ += root;
+            return end - 1;
+        }
+        if (is(k, "End")) {
+            if (open_.empty()) fail("End Site outside a joint");
+            if (i + 1 == w.size() || !is(w[i + 1], "Site")) fail("'End': expected 'End Site'");
+            add_node(out_.nodes[open_.back()].name + "_End");
+            in_joint_ = false;
+            return i + 1;
+        }
+        if (open_.empty()) fail(fmt::format("'{}' outside a joint: expected ROOT", excerpt(k)));
+        if (is(k, "OFFSET")) {
+            if (i + 3 >= w.size()) fail("OFFSET: expected three numbers");
+            double xyz[3];
+            for (std::size_t j = 1; j <= 3; ++j) {
+                const auto v = parse_number(w[i + j]);
+                if (!v) fail(fmt::format("OFFSET: '{}': expected a number", excerpt(w[i + j])));
+                xyz[j - 1] = *v;
+            }
+            out_.nodes[open_.back()].offset = {xyz[0], xyz[1], xyz[2]};
+            return i + 3;
+        }
+        if (is(k, "CHANNELS")) return channels(w, i);
+        fail(fmt::format("'{}': expected ROOT, JOINT, End Site, OFFSET, CHANNELS, a brace or MOTION", excerpt(k)));
+    }
+
+    std::size_t channels(const std::vector<std::string_view>& w, std::size_t i) {
+        if (!in_joint_) fail("CHANNELS outside a joint: expected them in ROOT or JOINT, before its children");
+        if (joint_.line == 0) fail(fmt::format("joint '{}' has CHANNELS twice: expected them once", block_name()));
+        const auto count = i + 1 < w.size() ? parse_number(w[i + 1]) : std::nullopt;
+        if (!count || *count < 0 || *count != std::floor(*count) || *count > 6)
+            fail("CHANNELS: expected a count from 0 to 6, then the channel names");
+        const auto n = static_cast<std::size_t>(*count);
+        if (w.size() - i - 2 != n)
+            fail(fmt::format("CHANNELS {}: expected {} channel names on the line, got {}", n, n, w.size() - i - 2));
+        std::string order;
+        std::set<int> seen;
+        for (std::size_t j = 0; j < n; ++j) {
+            const std::string_view name = w[i + 2 + j];
+            const int kind = channel_kind(name);
+            if (kind < 0)
+                fail(
+                    fmt::format("channel '{}': expected Xposition, Yposition, Zposition, Xrotation, Yrotation or "
+                                "Zrotation",
+                                excerpt(name)));
+            if (!seen.insert(kind).second) fail(fmt::format("channel {} listed twice: expected each once", name));
+            joint_.channels.emplace_back(name);
+            joint_.kinds.push_back(kind);
+            if (kind >= 3)
+                order += static_cast<char>('X' + kind - 3);
+            else
+                joint_.positions = true;
+        }
+        for (const char axis : {'X', 'Y', 'Z'})
+            if (order.find(axis) == std::string::npos) order += axis;
+        joint_.euler = *parse_euler_seq(order);
+        if (n > 0) {
+            out_.nodes[open_.back()].joint = out_.joints.size();
+            out_.joints.push_back(joint_);
+        }
+        joint_.line = 0;  // CHANNELS given
+        return i + 1 + n;
+    }
+
+    void motion_header() {
+        std::string_view line;
+        const auto next_words = [&](std::string_view what) {
+            while (lines_.next(line))
+                if (auto w = words(line); !w.empty()) return w;
+            fail(fmt::format("no '{}' line: expected it after MOTION", what));
+        };
+        auto w = next_words("Frames:");
+        const auto frames = w.size() == 2 && is(w[0], "Frames:") ? parse_number(w[1]) : std::nullopt;
+        if (!frames || *frames < 0 || *frames != std::floor(*frames) || *frames > 9e15)
+            fail(fmt::format("'{}': expected 'Frames: N', the number of frame lines", excerpt(trim(line))));
+        out_.frames = static_cast<std::size_t>(*frames);
+        w = next_words("Frame Time:");
+        const auto time = w.size() == 3 && is(w[0], "Frame") && is(w[1], "Time:") ? parse_number(w[2]) : std::nullopt;
+        if (!time) fail(fmt::format("'{}': expected 'Frame Time: T', seconds per frame", excerpt(trim(line))));
+        if (!(*time > 0)) fail(fmt::format("Frame Time {}: expected a positive number of seconds", w[2]));
+        out_.frame_time = *time;
+        out_.fps = rate_of(w[2], *time);
+        if (!std::isfinite(out_.fps)) fail(fmt::format("Frame Time {}: expected at most a frame a nanosecond", w[2]));
+    }
+
+    line_reader& lines_;
+    const std::string& source_;
+    bvh_source out_{{}, "\n", {}, {}, 0, 0, 0};
+    std::vector<std::size_t> open_;  // the open blocks, as indices into out_.nodes
+    std::set<std::string> names_;    // the tracks' names so far
+    bool expect_brace_ = false, in_joint_ = false;
+    bvh_joint joint_;
+    int roots_ = 0;
+};
+
+/// A BVH file's frames, read whole into a column of numbers per channel (a
+/// frame-major file gives its joints' keys one joint after another), then
+/// given as keys.
+class bvh_keys final : public key_reader {
+public:
+    bvh_keys(std::istream& in, const read_options& ro) : source_(ro.source), lines_(in, ro.max_bytes, ro.source) {
+        header_ = header_parser(lines_, ro.source).parse();
+        for (const bvh_joint& j : header_.joints) width_ += j.channels.size();
+        if (width_ == 0) throw input_error(source_, "no joint has CHANNELS: expected some channels to read");
+        columns_.resize(width_);
+        // (A reservation is address space, not memory, until the frames fill it.)
+        for (auto& c : columns_) c.reserve(std::min<std::size_t>(header_.frames, (std::size_t{1} << 26) / width_));
+        settings_ = ro.settings;
+        settings_.angles = angle_unit::degrees;
+        settings_.key_fps = header_.fps;
+        settings_.interpolation = std::nullopt;
+    }
+
+    bool next(std::string& track, raw_key& k) override {
+        if (joint_ == header_.joints.size()) return false;
+        // The first joint's keys come as their lines are read (a caller that
+        // wants only the first key reads one line); its last reads the rest.
+        read_frames(joint_ == 0 && frame_ + 1 < header_.frames ? frame_ + 1 : SIZE_MAX);
+        const bvh_joint& j = header_.joints[joint_];
+        settings_.euler = j.euler;
+        track = j.name;
+        // Each field set, not a fresh raw_key: a key is copied millions of times.
+        k.at.line = frame_lines_[frame_];
+        k.at.path.clear();
+        k.time.reset();
+        k.frame = static_cast<double>(frame_);
+        k.kind = rep::euler;
+        k.values[0] = k.values[1] = k.values[2] = 0;
+        std::size_t angle = 0;
+        vec3 position{};
+        for (std::size_t c = 0; c < j.kinds.size(); ++c) {
+            const int kind = j.kinds[c];
+            const double v = columns_[column_ + c][frame_];
+            if (kind >= 3)
+                k.values[angle++] = v;
+            else
+                (kind == 0 ? position.x : kind == 1 ? position.y : position.z) = v;
+        }
+        k.translation = j.positions ? std::optional<vec3>(position) : std::nullopt;
+        k.scale.reset();
+        k.unknown.clear();
+        k.spline.reset();
+        if (++frame_ == header_.frames) frame_ = 0, column_ += j.channels.size(), ++joint_;
+        return true;
+    }
+    bool named() const override { return true; }
+    location start() const override { return {}; }
+    const key_settings& settings() const override { return settings_; }
+
+private:
+    /// Reads frame lines until `count` frames are in; SIZE_MAX: all of
+    /// them, and checks that they are as many as 'Frames:' says.
+    void read_frames(std::size_t count) {
+        if (at_end_) return;
+        line_reader& lines = lines_;
+        std::string_view line;
+        while (frame_lines_.size() < count && lines.next(line)) {
+            const char* p = line.data();
+            const char* const end = p + line.size();
+            const auto blank = [&] {
+                while (p != end && (*p == ' ' || *p == '\t')) ++p;
+            };
+            blank();
+            if (p == end) continue;
+            const auto where = [&] { return fmt::format("{}:{}", source_, lines.number()); };
+            if (frame_lines_.size() == header_.frames)
+                throw input_error(where(), fmt::format("a frame line after the {} that 'Frames:' states: expected {}",
+                                                       header_.frames, header_.frames));
+            std::size_t n = 0;
+            for (; p != end; ++n) {
+                const char* const start = p;
+                while (p != end && *p != ' ' && *p != '\t') ++p;
+                const std::string_view word(start, static_cast<std::size_t>(p - start));
+                // from_chars at once for the common number; parse_number for the rest ('+', underflow, errors).
+                double v = 0;
+                const auto [stop, ec] = std::from_chars(start, p, v);
+                if (ec != std::errc{} || stop != p || !std::isfinite(v)) {
+                    const auto parsed = parse_number(word);
+                    if (!parsed)
+                        throw input_error(where(),
+                                          fmt::format("value {}: '{}': expected a number", n + 1, excerpt(word)));
+                    v = *parsed;
+                }
+                if (n < width_) columns_[n].push_back(v);
+                blank();
+            }
+            if (n != width_)
+                throw input_error(where(),
+                                  fmt::format("expected {} values (the hierarchy's channels), got {}", width_, n));
+            frame_lines_.push_back(lines.number());
+        }
+        if (frame_lines_.size() == count) return;
+        at_end_ = true;
+        if (frame_lines_.size() != header_.frames)
+            throw input_error(
+                fmt::format("{}:{}", source_, lines.number()),
+                fmt::format("'Frames: {}', but {} frame lines: expected as many", header_.frames, frame_lines_.size()));
+        if (frame_lines_.empty()) throw input_error(source_, "'Frames: 0': expected at least one frame");
+    }
+
+    std::string source_;
+    line_reader lines_;
+    bool at_end_ = false;  // every frame line read
+    bvh_source header_;
+    std::size_t width_ = 0;                     // values per frame
+    std::vector<std::vector<double>> columns_;  // per channel, frame after frame
+    std::vector<std::size_t> frame_lines_;      // each frame's line
+    key_settings settings_;
+    std::size_t joint_ = 0, column_ = 0, frame_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<key_reader> make_bvh_reader(std::istream& in, const read_options& ro) {
+    return std::make_unique<bvh_keys>(in, ro);
+}
+
+std::shared_ptr<bvh_source> read_bvh_source(std::istream& in, const read_options& ro) {
+    line_reader lines(in, ro.max_bytes, ro.source);
+    return std::make_shared<bvh_source>(header_parser(lines, ro.source).parse());
+}
+
+}  // namespace keyrot
