@@ -15,6 +15,8 @@ public:
 
     void begin_track(const std::string& name, channels, const track_interpolation&) override {
         tracks_.push_back({name, {}});
+        // Every joint has the first one's frames: no copying as they come.
+        if (tracks_.size() > 1) tracks_.back().rows.reserve(tracks_.front().rows.size());
     }
     void row(const sample& s) override {
         tracks_.back().rows.push_back({s.time, s.rotation, s.translation.value_or(vec3{})});
