@@ -337,6 +337,22 @@ def check_gltf(path, root, joints, work):
         ok(f"{path} -> glTF: the skeleton as {len(nodes)} nodes, the frames within {worst:.2g} deg (32-bit floats)")
 
 
+def check_rates(work):
+    """The rate a Frame Time as written stands for: a whole rate where exactly one rounds to it."""
+    head = "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 1 Zrotation\n}\nMOTION\nFrames: 2\nFrame Time: "
+    rates = {"0.0083333": 120, "0.0333": 30, ".04": 25, "0.017": 1 / 0.017, "0.0333667": 1 / 0.0333667, "4e-2": 25}
+    bad = []
+    for written, rate in rates.items():
+        _, out, err = run(["convert", "-", "--to", "json"], (head + written + "\n0\n1\n").encode())
+        got = json.loads(out)["fps"] if out else None
+        if got != rate:
+            bad.append(f"{written}: {got}, expected {rate} ({err.strip()})")
+    if bad:
+        fail("Frame Time rates: " + "; ".join(bad))
+    else:
+        ok(f"Frame Time as written: {len(rates)} rates as the README says")
+
+
 def check_bad(work):
     good = ("HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation "
             "Yrotation\n  JOINT Leg\n  {\n    OFFSET 0 -1 0\n    CHANNELS 3 Zrotation Xrotation Yrotation\n"
@@ -402,6 +418,7 @@ def main():
         check_resample_24(os.path.join(work, "take.bvh"), joints, work)
         check_continuous_csv(os.path.join(work, "take.bvh"))
         check_gltf(os.path.join(work, "take.bvh"), root, joints, work)
+        check_rates(work)
         check_bad(work)
     print(f"bvh_test: {checks} checks, {len(failures)} failures")
     return 1 if failures else 0

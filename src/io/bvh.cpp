@@ -39,17 +39,18 @@ int channel_kind(std::string_view name) {
     return -1;
 }
 
-/// The rate of a Frame Time as written: the whole number of frames per
+/// The rate of a Frame Time as written: the one whole number of frames per
 /// second whose frame time, rounded to the decimals written, is the one
-/// written (0.0083333 is 120 fps), else its reciprocal.
+/// written (0.0083333 is 120 fps); else, where there is none or more than
+/// one (0.017 is the rounding of both 1/58 and 1/59), its reciprocal.
 double rate_of(std::string_view written, double frame_time) {
     const double exact = 1 / frame_time;
     const auto point = written.find('.');
     if (point == std::string_view::npos || written.find_first_of("eE") != std::string_view::npos) return exact;
-    const auto decimals = static_cast<int>(written.size() - point - 1);
+    const double half_digit = 0.5 * std::pow(10.0, -static_cast<int>(written.size() - point - 1)) * (1 + 1e-9);
+    const auto rounds_to_it = [&](double rate) { return rate >= 1 && std::fabs(1 / rate - frame_time) <= half_digit; };
     const double whole = std::round(exact);
-    if (whole < 1) return exact;
-    return std::fabs(1 / whole - frame_time) <= 0.5 * std::pow(10.0, -decimals) * (1 + 1e-9) ? whole : exact;
+    return rounds_to_it(whole) && !rounds_to_it(whole - 1) && !rounds_to_it(whole + 1) ? whole : exact;
 }
 
 /// Reads the hierarchy and the motion's header from `lines`, which then
