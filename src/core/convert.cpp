@@ -247,7 +247,7 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
 
 std::array<double, 3> continuous_euler(quat q, const euler_seq& seq, const std::array<double, 3>& previous) noexcept {
     constexpr double pi = std::numbers::pi, turn = 2 * std::numbers::pi;
-    const auto& a = to_euler(q, seq).angles;
+    const std::array<double, 3> a = to_euler(q, seq).angles;
     const bool proper = seq.axes[0] == seq.axes[2];
     std::array<std::array<double, 3>, 2> candidates = {a, {a[0] + pi, proper ? -a[1] : pi - a[1], a[2] + pi}};
     double best_move = 0;
