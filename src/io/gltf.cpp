@@ -252,7 +252,7 @@ public:
             begin(next_track_++);
         }
         track = tracks_[next_track_ - 1].name;
-        k = key_at(key_++);
+        key_at(key_++, k);
         return true;
     }
     bool named() const override { return true; }
@@ -291,12 +291,17 @@ private:
         key_ = 0;
     }
 
-    /// Key j of the current track: each channel's key there, or its curve's value.
-    raw_key key_at(std::size_t j) const {
+    /// Key j of the current track into `raw`: each channel's key there, or
+    /// its curve's value. (Each field is set in place: a fresh raw_key for
+    /// every key would be copied, tangents and all, once more.)
+    void key_at(std::size_t j, raw_key& raw) const {
         const double t = times_[j];
-        raw_key raw;
+        raw.at.line = 0;
+        raw.at.path.clear();
         raw.time = t;
+        raw.frame.reset();
         raw.kind = rep::quat;
+        raw.unknown.clear();
         spline_key s{};
         if (rotation_) {
             const auto key = std::lower_bound(rotation_->times.begin(), rotation_->times.end(), t);
@@ -332,10 +337,10 @@ private:
             raw.values = {rest_.w, rest_.x, rest_.y, rest_.z};
             s.rotation = rest_;
         }
-        if (translation_) raw.translation = vector_at(*translation_, t, s.translation_in, s.translation_out);
-        if (scale_) raw.scale = vector_at(*scale_, t, s.scale_in, s.scale_out);
+        raw.translation = translation_ ? vector_at(*translation_, t, s.translation_in, s.translation_out) : std::nullopt;
+        raw.scale = scale_ ? vector_at(*scale_, t, s.scale_in, s.scale_out) : std::nullopt;
         if (spline_) raw.spline = s;
-        return raw;
+        else raw.spline.reset();
     }
 
     /// A translation or scale channel at time `t`, with its tangents there:
