@@ -57,6 +57,20 @@ struct raw_key {
     std::optional<vec3> translation, scale;
     std::string unknown;  ///< a JSON key's first field that keyrot does not read, if any
     std::optional<spline_key> spline;  ///< glTF CUBICSPLINE keys only
+
+    /// Back to a default key in place, keeping the strings' storage: a reader
+    /// that gives millions of keys fills one, where a fresh raw_key for each
+    /// would be copied, tangents and all, once more.
+    void reset() noexcept {
+        at.line = 0;
+        at.path.clear();
+        time.reset(), frame.reset();
+        kind = rep::quat;
+        values.fill(0);
+        translation.reset(), scale.reset();
+        unknown.clear();
+        spline.reset();
+    }
 };
 
 /// Settings that describe a document (flags, overridden by its own fields).

@@ -260,13 +260,10 @@ public:
         const bvh_joint& j = header_.joints[joint_];
         settings_.euler = j.euler;
         track = j.name;
-        // Each field set, not a fresh raw_key: a key is copied millions of times.
+        k.reset();
         k.at.line = frame_lines_[frame_];
-        k.at.path.clear();
-        k.time.reset();
         k.frame = static_cast<double>(frame_);
         k.kind = rep::euler;
-        k.values[0] = k.values[1] = k.values[2] = 0;
         std::size_t angle = 0;
         vec3 position{};
         for (std::size_t c = 0; c < j.kinds.size(); ++c) {
@@ -277,10 +274,7 @@ public:
             else
                 (kind == 0 ? position.x : kind == 1 ? position.y : position.z) = v;
         }
-        k.translation = j.positions ? std::optional<vec3>(position) : std::nullopt;
-        k.scale.reset();
-        k.unknown.clear();
-        k.spline.reset();
+        if (j.positions) k.translation = position;
         if (++frame_ == header_.frames) frame_ = 0, column_ += j.channels.size(), ++joint_;
         return true;
     }

@@ -291,17 +291,12 @@ private:
         key_ = 0;
     }
 
-    /// Key j of the current track into `raw`: each channel's key there, or
-    /// its curve's value. (Each field is set in place: a fresh raw_key for
-    /// every key would be copied, tangents and all, once more.)
+    /// Key j of the current track into `raw` (raw_key::reset): each
+    /// channel's key there, or its curve's value.
     void key_at(std::size_t j, raw_key& raw) const {
         const double t = times_[j];
-        raw.at.line = 0;
-        raw.at.path.clear();
+        raw.reset();
         raw.time = t;
-        raw.frame.reset();
-        raw.kind = rep::quat;
-        raw.unknown.clear();
         spline_key s{};
         if (rotation_) {
             const auto key = std::lower_bound(rotation_->times.begin(), rotation_->times.end(), t);
@@ -337,10 +332,9 @@ private:
             raw.values = {rest_.w, rest_.x, rest_.y, rest_.z};
             s.rotation = rest_;
         }
-        raw.translation = translation_ ? vector_at(*translation_, t, s.translation_in, s.translation_out) : std::nullopt;
-        raw.scale = scale_ ? vector_at(*scale_, t, s.scale_in, s.scale_out) : std::nullopt;
+        if (translation_) raw.translation = vector_at(*translation_, t, s.translation_in, s.translation_out);
+        if (scale_) raw.scale = vector_at(*scale_, t, s.scale_in, s.scale_out);
         if (spline_) raw.spline = s;
-        else raw.spline.reset();
     }
 
     /// A translation or scale channel at time `t`, with its tangents there:
