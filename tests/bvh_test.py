@@ -15,7 +15,9 @@ and curves that turn through +-180 degrees. Checked:
 - resample of the BVH equals convert to quaternion CSV, then resample,
   byte for byte;
 - --euler-continuous on CSV output: no jump of a turn, the same rotations;
-- bad files: one line with file:line, exit 2, nothing written.
+- bad files: one line with file:line, exit 2, nothing written (into a
+  file or to standard output);
+- BVH to BVH streams: a take 100 times longer takes about the same memory.
 
 Usage: bvh_test.py KEYROT. Exit 0 when all pass, 1 otherwise, 77 without scipy.
 """
@@ -386,10 +388,13 @@ def check_bad(work):
             f.write(text)
         out = path + ".out.bvh"
         status, _, err = run(["resample", path, "-o", out])
+        # BVH to BVH on standard output streams too: after a pass that reads every frame.
+        status_stdout, written, err_stdout = run(["resample", path])
         lines = err.strip().split("\n")
         if status != 2 or len(lines) != 1 or want not in lines[0] or not lines[0].startswith(f"keyrot: {path}") \
-                or os.path.exists(out):
-            fail(f"bad BVH '{name}': status {status}, stderr {err.strip()!r}, expected '{want}'")
+                or os.path.exists(out) or (status_stdout, written, err_stdout) != (2, "", err):
+            fail(f"bad BVH '{name}': status {status}, stderr {err.strip()!r}, expected '{want}'; to standard "
+                 f"output: status {status_stdout}, {len(written)} bytes, stderr {err_stdout.strip()!r}")
         else:
             bad_ok += 1
     status, _, err = run(["resample", os.path.join(os.path.dirname(KEYROT), "..", "data", "walk.csv"),
@@ -400,6 +405,50 @@ def check_bad(work):
         bad_ok += 1
     if bad_ok == len(cases) + 1:
         ok(f"{bad_ok} bad inputs: one line naming file:line, exit 2, nothing written")
+
+
+# A child's peak memory counts what it was forked from: keyrot is started
+# from a bare Python, not from this one with numpy loaded.
+PEAK = ("import os, sys\n"
+        "pid = os.posix_spawn(sys.argv[1], sys.argv[1:], os.environ,\n"
+        "                     file_actions=[(os.POSIX_SPAWN_OPEN, 1, os.devnull, os.O_WRONLY, 0)])\n"
+        "_, status, usage = os.wait4(pid, 0)\n"
+        "print(os.waitstatus_to_exitcode(status), usage.ru_maxrss)\n")
+
+
+def peak_kb(args):
+    """Status and peak resident memory (KB) of keyrot run with `args`."""
+    # (AddressSanitizer holds freed memory back to catch its reuse: not here.)
+    asan = ":".join(filter(None, [os.environ.get("ASAN_OPTIONS"), "quarantine_size_mb=0"]))
+    out = subprocess.run([sys.executable, "-S", "-c", PEAK, KEYROT] + args, capture_output=True, check=True,
+                         env=dict(os.environ, ASAN_OPTIONS=asan))
+    status, kb = out.stdout.split()
+    return int(status), int(kb)
+
+
+def check_memory(work):
+    """BVH to BVH streams: a take 100 times longer needs about the same memory."""
+    header = ("HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation "
+              "Xrotation Yrotation\n  JOINT Leg\n  {\n    OFFSET 0 -1 0\n    CHANNELS 3 Zrotation Xrotation "
+              "Yrotation\n    End Site\n    {\n      OFFSET 0 -1 0\n    }\n  }\n}\nMOTION\n")
+    peaks = []
+    for frames in (3000, 300000):
+        path = os.path.join(work, f"long{frames}.bvh")
+        with open(path, "w") as f:
+            f.write(header + f"Frames: {frames}\nFrame Time: 0.0083333\n")
+            line = " ".join(["1.25", "-2.5", "3.75", "10.5", "-20.25", "30.125", "40.5", "-50.25", "60.125"]) + "\n"
+            f.write(line * frames)
+        for args in (["resample", path, "--fps", "24", "-o", path + ".24.bvh"], ["resample", path, "--fps", "24"]):
+            status, kb = peak_kb(args)
+            if status != 0:
+                fail(f"{' '.join(args)}: status {status}")
+            peaks.append(kb)
+    short, long_ = max(peaks[:2]), max(peaks[2:])
+    # The 300,000 frames' values alone would take 21 MB held as numbers.
+    if long_ > short + 4000:
+        fail(f"BVH to BVH memory: {short} KB for 3,000 frames, {long_} KB for 300,000")
+    else:
+        ok(f"BVH to BVH memory: {short} KB for 3,000 frames, {long_} KB for 300,000 (file and standard output)")
 
 
 def main():
@@ -420,6 +469,7 @@ def main():
         check_gltf(os.path.join(work, "take.bvh"), root, joints, work)
         check_rates(work)
         check_bad(work)
+        check_memory(work)
     print(f"bvh_test: {checks} checks, {len(failures)} failures")
     return 1 if failures else 0
 

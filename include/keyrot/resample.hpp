@@ -4,6 +4,7 @@
 #include <deque>
 #include <functional>
 #include <optional>
+#include <utility>
 
 #include "keyrot/interpolate.hpp"
 #include "keyrot/track.hpp"
@@ -28,6 +29,10 @@ struct resample_options {
 
 /// Where frames go as they are made.
 using frame_sink = std::function<void(const sample&)>;
+
+/// The first and last frame of the grid for keys from `first` to `last`
+/// seconds: a frame within tolerance of a key counts as at it.
+std::pair<double, double> frame_span(double first, double last, const resample_options& opts);
 
 /// Throws input_error (naming the key, in `source`) when a track whose keys
 /// run from `first` to `last` would have more than opts.max_frames frames or

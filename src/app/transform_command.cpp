@@ -22,6 +22,7 @@
 #include "ground/held_warnings.hpp"
 #include "ground/thread_start.hpp"
 #include "io/bvh.hpp"
+#include "io/bvh_write.hpp"
 #include "io/document.hpp"
 #include "io/gltf.hpp"
 #include "io/open.hpp"
@@ -90,6 +91,10 @@ sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.tran
 class row_source {
 public:
     virtual ~row_source() = default;
+    /// A row source of the same kind, for a track whose keys come between this one's.
+    virtual std::unique_ptr<row_source> another() const = 0;
+    /// How many rows a track of `keys` keys from `first` to `last` makes, which states no interpolation of its own.
+    virtual std::size_t row_count(const key& first, const key& last, std::size_t keys) const = 0;
     /// What the writer is told before the first row.
     virtual table_info table(const document_facts& d) const = 0;
     /// Checks the whole input before anything is written.
@@ -110,6 +115,11 @@ class frame_rows final : public row_source {
 public:
     /// `method_given`: --method overrides the interpolation a file states.
     frame_rows(const resample_options& r, bool method_given) : opts_(r), method_given_(method_given) {}
+    std::unique_ptr<row_source> another() const override { return std::make_unique<frame_rows>(opts_, method_given_); }
+    std::size_t row_count(const key& first, const key& last, std::size_t) const override {
+        const auto [from, to] = frame_span(first.time, last.time, opts_);
+        return static_cast<std::size_t>(to - from + 1);
+    }
     table_info table(const document_facts& d) const override {
         table_info info;
         info.named = d.named;
@@ -164,6 +174,8 @@ private:
 /// convert: each key as it is, with its own frame or time.
 class key_rows final : public row_source {
 public:
+    std::unique_ptr<row_source> another() const override { return std::make_unique<key_rows>(); }
+    std::size_t row_count(const key&, const key&, std::size_t keys) const override { return keys; }
     table_info table(const document_facts& d) const override {
         table_info info;
         info.named = d.named;
@@ -214,8 +226,8 @@ struct transform_plan {
 write_options writing_for(const transform_plan& p, const input_source& src, const document_facts& d, warnings& warn) {
     write_options w = writing(p.flags, d.tracks.front().euler);
     if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = read_gltf_source(*src.open(), p.in, p.reading, warn);
-    // A BVH output keeps the input's hierarchy; a glTF output makes it the nodes.
-    if ((p.out == format::bvh || is_gltf(p.out)) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);
+    // A glTF output of a BVH input makes its hierarchy the nodes.
+    if (is_gltf(p.out) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);
     return w;
 }
 
@@ -350,9 +362,53 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
     });
 }
 
+/// BVH to BVH: the joints' keys frame after frame, each joint's rows made
+/// by a row source of its own and written as frame lines as they come, so
+/// that memory does not grow with the take. Into a file that replaces its
+/// target at the end, in one pass; otherwise after a pass that reads every
+/// frame, so that an error never leaves part of the output behind.
+void transform_frames(const transform_plan& p, const input_source& src, std::ostream& out, warnings& warn) {
+    const auto source = read_bvh_source(*src.open(), p.reading);
+    if (!p.target || !replaced_on_commit(*p.target)) check_bvh_frames(*src.open(), p.reading);
+    const auto stream = src.open();
+    const auto reader = make_bvh_frame_reader(*stream, p.reading);
+    std::string name;
+    raw_key raw;
+    // The first frame's keys: each joint's track, and the facts the output needs first.
+    const std::size_t joints = source->joints.size();
+    std::vector<key> first;
+    document_facts d;
+    d.named = true;
+    while (first.size() < joints && reader->next(name, raw)) {
+        first.push_back(make_key(raw, reader->settings(), warn));
+        d.add(name, reader->settings(), first.back());
+    }
+    for (auto& t : d.tracks) {  // the last frame's keys, as far as facts go
+        t.last.frame = static_cast<double>(source->frames - 1);
+        t.last.time = *t.last.frame / t.key_fps;
+        t.keys = source->frames;
+    }
+    p.rows->check(d, src.source());
+    const table_info info = p.rows->table(d);
+    bvh_output file(p.target, out, source, p.rows->row_count(d.tracks[0].first, d.tracks[0].last, source->frames),
+                    info.fps ? 1 / *info.fps : source->frame_time, writing(p.flags, d.tracks[0].euler));
+    std::vector<std::unique_ptr<row_source>> rows;
+    for (std::size_t j = 0; j < joints; ++j) {
+        rows.push_back(p.rows->another());
+        rows[j]->begin_track(source->joints[j].euler, std::nullopt, d.tracks[j].carried,
+                             [&file, j](const sample& s) { file.row(j, s); });
+        rows[j]->add(first[j]);
+    }
+    for (std::size_t n = 0; reader->next(name, raw); n = n + 1 == joints ? 0 : n + 1)
+        rows[n]->add(make_key(raw, reader->settings(), warn));
+    for (auto& r : rows) r->end_track();
+    file.finish();
+}
+
 /// resample or convert one input into the plan's file or `out`.
 void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
     warnings warn(err, src.source());
+    if (p.out == format::bvh && p.in == format::bvh) return transform_frames(p, src, out, warn);
     if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn)) return;
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or

@@ -21,11 +21,16 @@ double tolerance(double time, const resample_options& opts) { return tolerance_f
 
 }  // namespace
 
+std::pair<double, double> frame_span(double first, double last, const resample_options& opts) {
+    // (+ 0: the ceiling of a time just below 0 is -0, which a glTF file would keep)
+    return {std::ceil(first * opts.fps - tolerance_frames(first, opts)) + 0.0,
+            std::floor(last * opts.fps + tolerance_frames(last, opts))};
+}
+
 void check_frame_range(const key& first, const key& last, const std::string& track_name, const resample_options& opts,
                        const std::string& source) {
     const double fps = opts.fps;
-    const double first_frame = std::ceil(first.time * fps - tolerance_frames(first.time, opts));
-    const double last_frame = std::floor(last.time * fps + tolerance_frames(last.time, opts));
+    const auto [first_frame, last_frame] = frame_span(first.time, last.time, opts);
     // Frame numbers must be exact integers in a double.
     constexpr double max_frame_number = 9007199254740992.0;  // 2^53
     for (const key* k : {&first, &last}) {
@@ -96,8 +101,7 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
 void track_resampler::add(const key& k) {
     if (!started_) {
         started_ = true;
-        // (+ 0: the ceiling of a time just below 0 is -0, which a glTF file would keep)
-        next_frame_ = std::ceil(k.time * opts_.fps - tolerance_frames(k.time, opts_)) + 0.0;
+        next_frame_ = frame_span(k.time, k.time, opts_).first;
     }
     if (k.translation || k.scale) {
         const spline_key spline = k.spline.value_or(spline_key{});
@@ -137,7 +141,7 @@ void track_resampler::frames_of(const segment& s) {
 }
 
 void track_resampler::frames_until(double time, quat q) {
-    for (; next_frame_ / opts_.fps <= time + tolerance(time, opts_); ++next_frame_) out(next_frame_, q);
+    for (const double last = frame_span(time, time, opts_).second; next_frame_ <= last; ++next_frame_) out(next_frame_, q);
 }
 
 void track_resampler::out(double frame, quat q) {

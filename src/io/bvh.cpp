@@ -234,62 +234,35 @@ private:
     int roots_ = 0;
 };
 
-/// A BVH file's frames, read whole into a column of numbers per channel (a
-/// frame-major file gives its joints' keys one joint after another), then
-/// given as keys.
-class bvh_keys final : public key_reader {
+/// A BVH file's frame lines after its header, a line of numbers at a time.
+class bvh_frames {
 public:
-    bvh_keys(std::istream& in, const read_options& ro) : source_(ro.source), lines_(in, ro.max_bytes, ro.source) {
+    bvh_frames(std::istream& in, const read_options& ro) : source_(ro.source), lines_(in, ro.max_bytes, ro.source) {
         header_ = header_parser(lines_, ro.source).parse();
         for (const bvh_joint& j : header_.joints) width_ += j.channels.size();
         if (width_ == 0) throw input_error(source_, "no joint has CHANNELS: expected some channels to read");
-        columns_.resize(width_);
-        // (A reservation is address space, not memory, until the frames fill it.)
-        for (auto& c : columns_) c.reserve(std::min<std::size_t>(header_.frames, (std::size_t{1} << 26) / width_));
         settings_ = ro.settings;
         settings_.angles = angle_unit::degrees;
         settings_.key_fps = header_.fps;
         settings_.interpolation = std::nullopt;
     }
 
-    bool next(std::string& track, raw_key& k) override {
-        if (joint_ == header_.joints.size()) return false;
-        // The first joint's keys come as their lines are read (a caller that
-        // wants only the first key reads one line); its last reads the rest.
-        read_frames(joint_ == 0 && frame_ + 1 < header_.frames ? frame_ + 1 : SIZE_MAX);
-        const bvh_joint& j = header_.joints[joint_];
-        settings_.euler = j.euler;
-        track = j.name;
-        k.reset();
-        k.at.line = frame_lines_[frame_];
-        k.frame = static_cast<double>(frame_);
-        k.kind = rep::euler;
-        std::size_t angle = 0;
-        vec3 position{};
-        for (std::size_t c = 0; c < j.kinds.size(); ++c) {
-            const int kind = j.kinds[c];
-            const double v = columns_[column_ + c][frame_];
-            if (kind >= 3)
-                k.values[angle++] = v;
-            else
-                (kind == 0 ? position.x : kind == 1 ? position.y : position.z) = v;
-        }
-        if (j.positions) k.translation = position;
-        if (++frame_ == header_.frames) frame_ = 0, column_ += j.channels.size(), ++joint_;
-        return true;
+    const bvh_source& header() const { return header_; }
+    std::size_t width() const { return width_; }
+    std::size_t line() const { return lines_.number(); }
+    std::size_t count() const { return read_; }  ///< frame lines read
+    /// The flags' settings, with the joint `j`'s sequence, degrees and the file's rate.
+    const key_settings& settings(std::size_t j) {
+        settings_.euler = header_.joints[j].euler;
+        return settings_;
     }
-    bool named() const override { return true; }
-    location start() const override { return {}; }
-    const key_settings& settings() const override { return settings_; }
 
-private:
-    /// Reads frame lines until `count` frames are in; SIZE_MAX: all of
-    /// them, and checks that they are as many as 'Frames:' says.
-    void read_frames(std::size_t count) {
-        if (at_end_) return;
-        line_reader& lines = lines_;
+    /// The values of the next frame line into `row` (width() of them);
+    /// false after the last, once their count is checked against 'Frames:'.
+    bool read(double* row) {
+        if (at_end_) return false;
         std::string_view line;
-        while (frame_lines_.size() < count && lines.next(line)) {
+        while (lines_.next(line)) {
             const char* p = line.data();
             const char* const end = p + line.size();
             const auto blank = [&] {
@@ -297,8 +270,8 @@ private:
             };
             blank();
             if (p == end) continue;
-            const auto where = [&] { return fmt::format("{}:{}", source_, lines.number()); };
-            if (frame_lines_.size() == header_.frames)
+            const auto where = [&] { return fmt::format("{}:{}", source_, lines_.number()); };
+            if (read_ == header_.frames)
                 throw input_error(where(), fmt::format("a frame line after the {} that 'Frames:' states: expected {}",
                                                        header_.frames, header_.frames));
             std::size_t n = 0;
@@ -316,38 +289,147 @@ private:
                                           fmt::format("value {}: '{}': expected a number", n + 1, excerpt(word)));
                     v = *parsed;
                 }
-                if (n < width_) columns_[n].push_back(v);
+                if (n < width_) row[n] = v;
                 blank();
             }
             if (n != width_)
                 throw input_error(where(),
                                   fmt::format("expected {} values (the hierarchy's channels), got {}", width_, n));
-            frame_lines_.push_back(lines.number());
+            ++read_;
+            return true;
         }
-        if (frame_lines_.size() == count) return;
         at_end_ = true;
-        if (frame_lines_.size() != header_.frames)
+        if (read_ != header_.frames)
             throw input_error(
-                fmt::format("{}:{}", source_, lines.number()),
-                fmt::format("'Frames: {}', but {} frame lines: expected as many", header_.frames, frame_lines_.size()));
-        if (frame_lines_.empty()) throw input_error(source_, "'Frames: 0': expected at least one frame");
+                fmt::format("{}:{}", source_, lines_.number()),
+                fmt::format("'Frames: {}', but {} frame lines: expected as many", header_.frames, read_));
+        if (read_ == 0) throw input_error(source_, "'Frames: 0': expected at least one frame");
+        return false;
     }
 
+    /// Key `frame` of joint `j`, at `line`, whose channel `c` has the value `value(c)`.
+    template <typename Value>
+    void key_of(std::size_t j, std::size_t frame, std::size_t line, Value value, raw_key& k) const {
+        const bvh_joint& joint = header_.joints[j];
+        k.reset();
+        k.at.line = line;
+        k.frame = static_cast<double>(frame);
+        k.kind = rep::euler;
+        std::size_t angle = 0;
+        vec3 position{};
+        for (std::size_t c = 0; c < joint.kinds.size(); ++c) {
+            const int kind = joint.kinds[c];
+            const double v = value(c);
+            if (kind >= 3)
+                k.values[angle++] = v;
+            else
+                (kind == 0 ? position.x : kind == 1 ? position.y : position.z) = v;
+        }
+        if (joint.positions) k.translation = position;
+    }
+
+private:
     std::string source_;
     line_reader lines_;
-    bool at_end_ = false;  // every frame line read
     bvh_source header_;
-    std::size_t width_ = 0;                     // values per frame
-    std::vector<std::vector<double>> columns_;  // per channel, frame after frame
-    std::vector<std::size_t> frame_lines_;      // each frame's line
+    std::size_t width_ = 0;  // values per frame
     key_settings settings_;
+    std::size_t read_ = 0;  // frame lines read
+    bool at_end_ = false;
+};
+
+/// A BVH file's keys joint after joint: the frames read whole into a column
+/// of numbers per channel (a frame-major file gives its joints' keys one
+/// joint after another).
+class bvh_keys final : public key_reader {
+public:
+    bvh_keys(std::istream& in, const read_options& ro) : frames_(in, ro), columns_(frames_.width()) {
+        // (A reservation is address space, not memory, until the frames fill it.)
+        const std::size_t frames = frames_.header().frames;
+        for (auto& c : columns_) c.reserve(std::min<std::size_t>(frames, (std::size_t{1} << 26) / columns_.size()));
+        row_.resize(columns_.size());
+    }
+
+    bool next(std::string& track, raw_key& k) override {
+        const bvh_source& h = frames_.header();
+        if (joint_ == h.joints.size()) return false;
+        // The first joint's keys come as their lines are read (a caller that
+        // wants only the first key reads one line); its last reads the rest.
+        read_lines(joint_ == 0 && frame_ + 1 < h.frames ? frame_ + 1 : SIZE_MAX);
+        track = h.joints[joint_].name;
+        settings_ = &frames_.settings(joint_);
+        frames_.key_of(joint_, frame_, frame_lines_[frame_], [&](std::size_t c) { return columns_[column_ + c][frame_]; },
+                       k);
+        if (++frame_ == h.frames) frame_ = 0, column_ += h.joints[joint_].channels.size(), ++joint_;
+        return true;
+    }
+    bool named() const override { return true; }
+    location start() const override { return {}; }
+    const key_settings& settings() const override { return *settings_; }
+
+private:
+    /// Reads frame lines until `count` frames are in (SIZE_MAX: all of them).
+    void read_lines(std::size_t count) {
+        while (frame_lines_.size() < count && frames_.read(row_.data())) {
+            for (std::size_t c = 0; c < row_.size(); ++c) columns_[c].push_back(row_[c]);
+            frame_lines_.push_back(frames_.line());
+        }
+    }
+
+    bvh_frames frames_;
+    std::vector<std::vector<double>> columns_;  // per channel, frame after frame
+    std::vector<double> row_;                   // the line being read
+    std::vector<std::size_t> frame_lines_;      // each frame's line
+    const key_settings* settings_ = nullptr;
     std::size_t joint_ = 0, column_ = 0, frame_ = 0;
+};
+
+/// A BVH file's keys frame after frame, a line at a time: memory does not
+/// grow with the take.
+class bvh_frame_keys final : public key_reader {
+public:
+    bvh_frame_keys(std::istream& in, const read_options& ro)
+        : frames_(in, ro), row_(frames_.width()), joint_(frames_.header().joints.size()) {}
+
+    bool next(std::string& track, raw_key& k) override {
+        const bvh_source& h = frames_.header();
+        if (joint_ == h.joints.size()) {
+            if (!frames_.read(row_.data())) return false;
+            joint_ = 0, column_ = 0;
+        }
+        track = h.joints[joint_].name;
+        settings_ = &frames_.settings(joint_);
+        frames_.key_of(joint_, frames_.count() - 1, frames_.line(), [&](std::size_t c) { return row_[column_ + c]; }, k);
+        column_ += h.joints[joint_].channels.size();
+        ++joint_;
+        return true;
+    }
+    bool named() const override { return true; }
+    location start() const override { return {}; }
+    const key_settings& settings() const override { return *settings_; }
+
+private:
+    bvh_frames frames_;
+    std::vector<double> row_;  // the frame line's values
+    const key_settings* settings_ = nullptr;
+    std::size_t joint_, column_ = 0;  // the next key's joint and its first value
 };
 
 }  // namespace
 
 std::unique_ptr<key_reader> make_bvh_reader(std::istream& in, const read_options& ro) {
     return std::make_unique<bvh_keys>(in, ro);
+}
+
+std::unique_ptr<key_reader> make_bvh_frame_reader(std::istream& in, const read_options& ro) {
+    return std::make_unique<bvh_frame_keys>(in, ro);
+}
+
+void check_bvh_frames(std::istream& in, const read_options& ro) {
+    bvh_frames frames(in, ro);
+    std::vector<double> row(frames.width());
+    while (frames.read(row.data())) {
+    }
 }
 
 std::shared_ptr<bvh_source> read_bvh_source(std::istream& in, const read_options& ro) {

@@ -2,100 +2,79 @@
 
 #include <fmt/format.h>
 
-#include "io/output.hpp"
+#include "io/fast/row_pipeline.hpp"
+#include "io/layout.hpp"
 
 namespace keyrot {
-namespace {
 
-class bvh_table final : public table_output {
-public:
-    bvh_table(const std::optional<std::string>& target, std::ostream& out, std::shared_ptr<bvh_source> source,
-              const table_info& info, const write_options& opts, warnings& warn)
-        : target_(target), out_(out), source_(std::move(source)), info_(info), opts_(opts), warn_(warn) {}
+bvh_output::bvh_output(const std::optional<std::string>& target, std::ostream& out,
+                       std::shared_ptr<const bvh_source> source, std::size_t frames, double frame_time,
+                       const write_options& opts)
+    : sink_(std::make_unique<detail::chunked_output>(target, out)),
+      source_(std::move(source)),
+      frames_(frames),
+      opts_(opts),
+      waiting_(source_->joints.size()),
+      previous_(source_->joints.size()) {
+    std::string& text = sink_->text();
+    const std::string& nl = source_->newline;
+    text += source_->hierarchy;
+    text += "MOTION" + nl + fmt::format("Frames: {}", frames) + nl + "Frame Time: ";
+    append_number(text, frame_time, std::nullopt);
+    text += nl;
+}
 
-    void begin_track(const std::string& name, channels, const track_interpolation&) override {
-        tracks_.push_back({name, {}});
-        // Every joint has the first one's frames: no copying as they come.
-        if (tracks_.size() > 1) tracks_.back().rows.reserve(tracks_.front().rows.size());
-    }
-    void row(const sample& s) override {
-        tracks_.back().rows.push_back({s.time, s.rotation, s.translation.value_or(vec3{})});
-    }
-    void finish() override {
-        const bvh_source& src = *source_;
-        if (tracks_.size() != src.joints.size())
-            throw input_error(warn_.source(), fmt::format("{} tracks for the {} joints with channels: expected one "
-                                                          "track per joint",
-                                                          tracks_.size(), src.joints.size()));
-        const std::size_t frames = tracks_.front().rows.size();
-        for (const track_rows& t : tracks_)
-            if (t.rows.size() != frames || t.rows.front().time != tracks_.front().rows.front().time)
-                throw input_error(warn_.source(),
-                                  fmt::format("track '{}' has {} rows from {} s, track '{}' {} from {} s: expected "
-                                              "the same frames for every joint, as BVH stores them",
-                                              tracks_.front().name, frames, tracks_.front().rows.front().time, t.name,
-                                              t.rows.size(), t.rows.front().time));
-        std::string text = src.hierarchy;
-        const std::string& nl = src.newline;
-        text += "MOTION" + nl + fmt::format("Frames: {}", frames) + nl + "Frame Time: ";
-        append_number(text, info_.fps ? 1 / *info_.fps : src.frame_time, std::nullopt);
-        text += nl;
-        std::vector<std::array<double, 3>> previous(tracks_.size());
-        for (std::size_t f = 0; f < frames; ++f) {
-            bool first = true;
-            for (std::size_t j = 0; j < tracks_.size(); ++j) {
-                const bvh_joint& joint = src.joints[j];
-                const frame_row& r = tracks_[j].rows[f];
-                previous[j] = f == 0 ? to_euler(r.rotation, joint.euler).angles
-                                     : continuous_euler(r.rotation, joint.euler, previous[j]);
-                const vec3& p = r.translation;
-                for (const int kind : joint.kinds) {
-                    if (!first) text += ' ';
-                    first = false;
-                    double v = 0;
-                    if (kind < 3) {
-                        v = kind == 0 ? p.x : kind == 1 ? p.y : p.z;
-                    } else {
-                        for (std::size_t a = 0; a < 3; ++a)
-                            if (joint.euler.axes[a] == kind - 3) v = from_radians(previous[j][a], angle_unit::degrees);
-                    }
-                    append_number(text, v, opts_.precision);
-                }
+bvh_output::~bvh_output() = default;
+
+void bvh_output::row(std::size_t joint, const sample& s) {
+    auto& rows = waiting_[joint];
+    if (rows.empty()) ++complete_;
+    rows.push_back({s.time, s.rotation, s.translation.value_or(vec3{})});
+    if (complete_ == waiting_.size()) write_frame();
+}
+
+void bvh_output::write_frame() {
+    if (written_ == frames_) throw error(fmt::format("BVH output: more frames than the {} stated", frames_));
+    std::string& text = sink_->text();
+    const double time = waiting_.front().front().time;
+    bool first = true;
+    for (std::size_t j = 0; j < waiting_.size(); ++j) {
+        const bvh_joint& joint = source_->joints[j];
+        const frame_row& r = waiting_[j].front();
+        if (r.time != time)
+            throw error(
+                fmt::format("joint '{}' has a frame at {} s where '{}' has one at {} s: expected the same "
+                            "frames for every joint, as BVH stores them",
+                            joint.name, r.time, source_->joints.front().name, time));
+        previous_[j] = written_ == 0 ? to_euler(r.rotation, joint.euler).angles
+                                     : continuous_euler(r.rotation, joint.euler, previous_[j]);
+        for (const int kind : joint.kinds) {
+            if (!first) text += ' ';
+            first = false;
+            double v = 0;
+            if (kind < 3) {
+                v = kind == 0 ? r.translation.x : kind == 1 ? r.translation.y : r.translation.z;
+            } else {
+                for (std::size_t a = 0; a < 3; ++a)
+                    if (joint.euler.axes[a] == kind - 3) v = from_radians(previous_[j][a], angle_unit::degrees);
             }
-            text += nl;
+            append_number(text, v, opts_.precision);
         }
-        if (target_)
-            write_file_atomically(*target_, text);
-        else
-            write_to_stream(out_, text);
+        waiting_[j].pop_front();
+        if (waiting_[j].empty()) --complete_;
     }
+    text += source_->newline;
+    ++written_;
+    sink_->maybe_flush();
+}
 
-private:
-    /// What BVH keeps of a row.
-    struct frame_row {
-        double time;
-        quat rotation;
-        vec3 translation;  // zero where the row has none
-    };
-    struct track_rows {
-        std::string name;
-        std::vector<frame_row> rows;
-    };
-    std::optional<std::string> target_;
-    std::ostream& out_;
-    std::shared_ptr<bvh_source> source_;
-    table_info info_;
-    write_options opts_;
-    warnings& warn_;
-    std::vector<track_rows> tracks_;
-};
-
-}  // namespace
-
-std::unique_ptr<table_output> make_bvh_table(const std::optional<std::string>& target, std::ostream& out,
-                                             std::shared_ptr<bvh_source> source, const table_info& info,
-                                             const write_options& opts, warnings& warn) {
-    return std::make_unique<bvh_table>(target, out, std::move(source), info, opts, warn);
+void bvh_output::finish() {
+    const auto longest = std::max_element(waiting_.begin(), waiting_.end(),
+                                          [](const auto& a, const auto& b) { return a.size() < b.size(); });
+    if (written_ != frames_ || !longest->empty())
+        throw error(fmt::format("BVH output: {} frames made, and {} more of some joints: expected {}", written_,
+                                longest->size(), frames_));
+    sink_->finish();
 }
 
 }  // namespace keyrot

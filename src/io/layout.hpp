@@ -35,7 +35,7 @@ struct write_options {
     std::optional<int> precision;  ///< digits after the point; none = shortest round trip
     /// glTF output: the glTF input it rewrites (none: a new file).
     std::shared_ptr<gltf_source> gltf = nullptr;
-    /// BVH output, and glTF output of a BVH input: the hierarchy of the BVH input.
+    /// glTF output of a BVH input: its hierarchy, made the nodes.
     std::shared_ptr<bvh_source> bvh = nullptr;
     /// Euler output: each row's angles nearest the row's before (continuous_euler).
     bool euler_continuous = false;

@@ -1,7 +1,6 @@
 #include "io/open.hpp"
 
 #include "io/bvh.hpp"
-#include "io/bvh_write.hpp"
 #include "io/fast/json_stream.hpp"
 #include "io/gltf.hpp"
 #include "io/gltf_write.hpp"
@@ -90,12 +89,10 @@ std::unique_ptr<table_output> open_table(format f, const std::optional<std::stri
             for (const bvh_node& n : opts.bvh->nodes) skeleton.push_back({n.name, n.parent, n.offset, n.joint});
         return make_gltf_table(f, path, out, opts.gltf, std::move(skeleton), warn);
     }
-    if (f == format::bvh) {
-        if (!opts.bvh)
-            throw input_error(warn.source(), "BVH output needs a BVH input, whose hierarchy it keeps: expected a .bvh "
-                                             "input, or another output format");
-        return make_bvh_table(path, out, opts.bvh, info, opts, warn);
-    }
+    // (BVH to BVH is written frame by frame, by bvh_output.)
+    if (f == format::bvh)
+        throw input_error(warn.source(), "BVH output needs a BVH input, whose hierarchy it keeps: expected a .bvh "
+                                         "input, or another output format");
     auto table = std::make_unique<piped_table>(f, path, out, info, opts, warn);
     if (opts.euler_continuous && opts.representation == rep::euler)
         return std::make_unique<continuous_euler_table>(std::move(table), *opts.euler);

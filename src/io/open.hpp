@@ -27,9 +27,10 @@ std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const re
 std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,
                                           const write_options& opts, warnings& warn);
 
-/// A table in format `f` into `path` (none: `out`), or a glTF or BVH file
-/// (make_gltf_table, make_bvh_table: opts.bvh is required). Euler output
-/// warns once about gimbal lock through `warn`.
+/// A table in format `f` into `path` (none: `out`), or a glTF file
+/// (make_gltf_table). Throws input_error for BVH, which only bvh_output
+/// writes, from BVH input. Euler output warns once about gimbal lock
+/// through `warn`.
 std::unique_ptr<table_output> open_table(format f, const std::optional<std::string>& path, std::ostream& out,
                                          const table_info& info, const write_options& opts, warnings& warn);
 
