@@ -20,7 +20,7 @@ namespace {
 
 /// The flag values as CLI11 fills them, before they become typed options.
 struct raw_flags {
-    std::string from, to, rep = "axis-angle", euler, out_euler, quat_order = "wxyz", method,
+    std::string from, to, rep, euler, out_euler, quat_order = "wxyz", method,
                         path = "shortest", from_rep = "quat", report;
     bool out_degrees = false, out_radians = false;
     std::optional<int> precision;
@@ -68,7 +68,7 @@ void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("-o,--output", o.output, "output file (default: standard output)");
     sub.add_option("--to", f.to, "output format (default: extension of -o, else the input format)")
         ->check(CLI::IsMember(names<format>()));
-    sub.add_option("--rep", f.rep, fmt::format("output representation (default: {})", f.rep))
+    sub.add_option("--rep", f.rep, "output representation (default: axis-angle; reduce: quat)")
         ->check(CLI::IsMember(names<rep>()));
     sub.add_option("--out-euler", f.out_euler, "Euler sequence of the output (default: --euler)");
     auto* deg = sub.add_flag("--out-degrees", f.out_degrees, "output angles in degrees");
@@ -110,7 +110,8 @@ void check_rate(const char* flag, double v) {
 void finish(options& o, const raw_flags& f) {
     if (!f.from.empty()) o.from = parse<format>(f.from);
     if (!f.to.empty()) o.to = parse<format>(f.to);
-    o.representation = *parse<rep>(f.rep);
+    // reduce writes the keys it keeps as quaternions, the rotations as read.
+    o.representation = !f.rep.empty() ? *parse<rep>(f.rep) : o.cmd == command::reduce ? rep::quat : rep::axis_angle;
     if (!f.euler.empty()) o.euler = euler_flag("--euler", f.euler);
     if (!f.out_euler.empty()) o.out_euler = euler_flag("--out-euler", f.out_euler);
     o.order = *parse<quat_order>(f.quat_order);
@@ -219,6 +220,29 @@ Examples:
   keyrot convert homework.json --rep euler --euler XYZ | keyrot compare homework.json - --report json)");
 }
 
+void define_reduce(CLI::App& sub, options& o, raw_flags& f) {
+    add_batch_flags(sub, o, f);
+    add_input_flags(sub, o, f);
+    add_output_flags(sub, o, f);
+    add_method_flags(sub, f);
+    sub.option_defaults()->group("Tolerance");
+    sub.add_option("--tol", o.tol_deg,
+                   fmt::format("largest rotation error in degrees at any input key (default {})", o.tol_deg));
+    sub.add_option("--tol-translation", o.tol_translation,
+                   fmt::format("largest translation (and scale) error at any input key (default {})",
+                               o.tol_translation));
+    sub.add_option("--report", f.report,
+                   "json: a JSON report per file on standard output, for keys written by -o or --output-dir")
+        ->check(CLI::IsMember({"json"}));
+    sub.footer(R"(Each track keeps its first key, its last, and the fewest between them such that the kept keys,
+played with --method, are within --tol of every input key. A summary line per track goes to standard error.
+
+Examples:
+  keyrot reduce turntable.csv --tol 0.05 -o turntable_reduced.csv
+  keyrot reduce arm_wave.gltf --tol 0.01 --tol-translation 0.0001 -o arm_wave_reduced.glb
+  keyrot reduce walk.csv z_turn.json --output-dir reduced --report json)");
+}
+
 void define_info(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
     sub.option_defaults()->group("Output");
@@ -239,12 +263,13 @@ struct command_definition {
     void (*define)(CLI::App&, options&, raw_flags&);
 };
 
-constexpr std::array<command_definition, 5> commands = {{
+constexpr std::array<command_definition, 6> commands = {{
     {"resample", "resample keyframes on the frame grid", command::resample, define_resample},
     {"convert", "rewrite keys in another representation, no resampling", command::convert, define_convert},
     {"slerp", "interpolate between two rotations (worked examples, homework)", command::slerp, define_slerp},
     {"compare", "grade an answer: per-frame rotation difference", command::compare, define_compare},
     {"info", "describe a track: keys, duration, per-segment angles, warnings", command::info, define_info},
+    {"reduce", "the fewest input keys that replay within a tolerance", command::reduce, define_reduce},
 }};
 
 /// CLI11's help, with one blank line between groups of flags (not two).
@@ -313,7 +338,7 @@ std::vector<std::string> command_names() {
     return names;
 }
 
-/// The commands as a message lists them: "resample, convert, slerp, compare or info".
+/// The commands as a message lists them: "resample, convert, slerp, compare, info or reduce".
 std::string listed_commands() {
     const std::vector<std::string> names = command_names();
     return fmt::format("{} or {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
@@ -399,10 +424,13 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
     for (std::size_t i = 0; i < commands.size(); ++i)
         if (subs[i]->parsed()) o.cmd = commands[i].cmd;
     finish(o, f);
-    if (o.cmd == command::compare)
-        for (double tol : {o.tol_deg, o.tol_translation})
+    if (o.cmd == command::compare || o.cmd == command::reduce)
+        for (const auto& [flag, tol] : {std::pair("--tol", o.tol_deg), std::pair("--tol-translation", o.tol_translation)})
             if (!(std::isfinite(tol) && tol >= 0))
-                throw usage_error(fmt::format("--tol: expected a tolerance of 0 or more, got {}", tol));
+                throw usage_error(fmt::format("{}: expected a tolerance of 0 or more, got {}", flag, tol));
+    if (o.cmd == command::reduce && o.report_json && !o.output && !o.output_dir)
+        throw usage_error("--report json: the report takes standard output: expected -o FILE or --output-dir DIR for "
+                          "the keys");
     return o;
 }
 

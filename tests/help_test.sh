@@ -15,7 +15,7 @@ export PATH="$scratch/bin:$PATH"
 failures=0
 fail() { echo "FAIL $*"; failures=$((failures + 1)); }
 
-for command in resample convert slerp compare info; do
+for command in resample convert slerp compare info reduce; do
     help=$(keyrot "$command" --help)
     examples=$(echo "$help" | sed -n '/^Examples:/,$p' | sed -n 's/^  \(keyrot .*\)/\1/p')
     (($(echo "$examples" | wc -l) >= 2)) || fail "$command --help: expected two or more examples"

@@ -100,6 +100,8 @@ struct key {
     /// The Euler angles as given (radians), for --method euler.
     std::optional<std::array<double, 3>> euler;
     bool renormalised = false;  ///< input norm differed from 1 by > tol::unit_norm
+    /// A quaternion key whose normalisation changed its bits: as given (reduce writes its keys back so).
+    std::optional<quat> given_quat = std::nullopt;
     std::optional<spline_key> spline;  ///< glTF CUBICSPLINE keys only
 };
 

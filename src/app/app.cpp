@@ -7,7 +7,8 @@ namespace keyrot {
 int run(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
     switch (o.cmd) {
         case command::resample:
-        case command::convert: return detail::run_transform(o, in, out, err);
+        case command::convert:
+        case command::reduce: return detail::run_transform(o, in, out, err);
         case command::slerp: return detail::run_slerp(o, out, err);
         case command::compare: return detail::run_compare(o, in, out, err);
         case command::info: return detail::run_info(o, in, out, err);

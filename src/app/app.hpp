@@ -13,7 +13,7 @@
 
 namespace keyrot {
 
-enum class command { resample, convert, slerp, compare, info };
+enum class command { resample, convert, slerp, compare, info, reduce };
 
 struct options {
     command cmd = command::resample;
@@ -45,7 +45,7 @@ struct options {
     std::vector<double> ts;        ///< -t
     std::optional<int> steps;      ///< --steps N: t = 0, 1/N, ..., 1
 
-    // compare
+    // compare, reduce
     double tol_deg = 0.01;
     double tol_translation = 0.001;
     bool report_json = false;

@@ -8,7 +8,7 @@ struct options;
 
 namespace keyrot::detail {
 
-int run_transform(const options& o, std::istream& in, std::ostream& out, std::ostream& err);  // resample, convert
+int run_transform(const options& o, std::istream& in, std::ostream& out, std::ostream& err);  // resample, convert, reduce
 int run_slerp(const options& o, std::ostream& out, std::ostream& err);
 int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostream& err);
 int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream& err);

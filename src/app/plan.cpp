@@ -53,6 +53,15 @@ resample_options resampling(const options& o) {
     return r;
 }
 
+reduce_options reducing(const options& o) {
+    reduce_options r;
+    r.how = o.how.value_or(method::slerp);
+    r.way = o.way;
+    r.tol_deg = o.tol_deg;
+    r.tol_translation = o.tol_translation;
+    return r;
+}
+
 document read_input(const options& o, const input_source& src, warnings& warn) {
     return read_document(src, src.detect(o.from), reading(o, src.source()), warn, json_reading::streamed_first);
 }

@@ -10,6 +10,7 @@
 #include "io/io.hpp"
 #include "io/source.hpp"
 #include "app/app.hpp"
+#include "keyrot/reduce.hpp"
 
 namespace keyrot::detail {
 
@@ -26,6 +27,8 @@ read_options reading(const options& o, const std::string& source);
 /// else the input's. Throws usage_error for rep::euler without either.
 write_options writing(const options& o, const std::optional<euler_seq>& input_euler);
 resample_options resampling(const options& o);
+/// What reduce's flags make of a track (a glTF sampler's own interpolation aside).
+reduce_options reducing(const options& o);
 
 /// An input read whole (compare, info), a JSON document streamed if it can be.
 document read_input(const options& o, const input_source& src, warnings& warn);

@@ -27,6 +27,7 @@
 #include "io/gltf.hpp"
 #include "io/open.hpp"
 #include "io/output.hpp"
+#include "keyrot/reduce.hpp"
 
 namespace keyrot::detail {
 namespace {
@@ -103,11 +104,15 @@ public:
     virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
     /// How a glTF file is to interpolate the rows of a track whose file states `own`.
     virtual track_interpolation written(const std::optional<track_interpolation>& own) const = 0;
-    /// A track begins (`own`: the interpolation its file states): its rows go to `row`.
-    virtual void begin_track(const std::optional<euler_seq>& euler, const std::optional<track_interpolation>& own,
-                             channels carried, frame_sink row) = 0;
+    /// Track `name` begins (`own`: the interpolation its file states): its rows go to `row`.
+    virtual void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
+                             const std::optional<track_interpolation>& own, channels carried, frame_sink row) = 0;
     virtual void add(const key& k) = 0;
     virtual void end_track() = 0;
+    /// The rows made so far do not count: the input is read again.
+    virtual void restart() {}
+    /// After the last track, what is to be said of them (reduce's summaries).
+    virtual void report(std::ostream&, std::ostream&) const {}
 };
 
 /// resample: every frame of the grid within a track's keys.
@@ -149,8 +154,8 @@ public:
         return {linear_or_step(r.how), linear_or_step(r.translation_how.value_or(r.how)),
                 linear_or_step(r.scale_how.value_or(r.how))};
     }
-    void begin_track(const std::optional<euler_seq>& euler, const std::optional<track_interpolation>& own,
-                     channels carried, frame_sink row) override {
+    void begin_track(const std::string&, const std::optional<euler_seq>& euler,
+                     const std::optional<track_interpolation>& own, channels carried, frame_sink row) override {
         resampler_.emplace(of(own), euler, carried, std::move(row));
     }
     void add(const key& k) override { resampler_->add(k); }
@@ -172,7 +177,7 @@ private:
 };
 
 /// convert: each key as it is, with its own frame or time.
-class key_rows final : public row_source {
+class key_rows : public row_source {
 public:
     std::unique_ptr<row_source> another() const override { return std::make_unique<key_rows>(); }
     std::size_t row_count(const key&, const key&, std::size_t keys) const override { return keys; }
@@ -201,15 +206,108 @@ public:
     track_interpolation written(const std::optional<track_interpolation>& own) const override {
         return own.value_or(track_interpolation{});  // (its time_rounding is not written)
     }
-    void begin_track(const std::optional<euler_seq>&, const std::optional<track_interpolation>&, channels,
-                     frame_sink row) override {
+    void begin_track(const std::string&, const std::optional<euler_seq>&, const std::optional<track_interpolation>&,
+                     channels, frame_sink row) override {
         row_ = std::move(row);
     }
     void add(const key& k) override { row_(key_row(k)); }
     void end_track() override {}
 
-private:
+protected:
     frame_sink row_;
+};
+
+/// reduce: the fewest of each track's keys that replay within tolerance
+/// (track_reducer), as convert writes keys.
+class reduced_rows final : public key_rows {
+public:
+    /// `method_given`: --method overrides the interpolation a file states.
+    /// `gltf`: the output is a glTF file, which plays rotations LINEAR (slerp) or STEP only.
+    reduced_rows(const reduce_options& r, bool method_given, bool report_json, std::string source, bool gltf)
+        : opts_(r), method_given_(method_given), report_json_(report_json), source_(std::move(source)), gltf_(gltf) {}
+    std::unique_ptr<row_source> another() const override {
+        return std::make_unique<reduced_rows>(opts_, method_given_, report_json_, source_, gltf_);
+    }
+    void check(const document_facts& d, const std::string& source) const override {
+        key_rows::check(d, source);
+        for (const auto& t : d.tracks) {
+            const reduce_options r = of(t.interpolation);
+            check_method(r.how, t.euler);
+            if (r.how == method::cubicspline || r.translation_how == method::cubicspline ||
+                r.scale_how == method::cubicspline)
+                throw input_error(source, fmt::format("track '{}' is CUBICSPLINE: expected LINEAR or STEP keys, which "
+                                                      "reduce keeps as they are (resample it first, or give --method)",
+                                                      t.name));
+            if (gltf_ && r.how != method::slerp && r.how != method::step)
+                throw usage_error(fmt::format("--method {}: a glTF file plays its keys as slerp (LINEAR) or step "
+                                              "(STEP): expected one of them, or another output format",
+                                              to_string(r.how)));
+        }
+    }
+    /// glTF plays the kept keys LINEAR (slerp; translations linear) or STEP.
+    track_interpolation written(const std::optional<track_interpolation>& own) const override {
+        const reduce_options r = of(own);
+        const auto linear_or_step = [](method m) { return m == method::step ? method::step : method::slerp; };
+        return {r.how, linear_or_step(r.translation_how.value_or(r.how)), linear_or_step(r.scale_how.value_or(r.how))};
+    }
+    void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
+                     const std::optional<track_interpolation>& own, channels carried, frame_sink row) override {
+        key_rows::begin_track(name, euler, own, carried, std::move(row));
+        name_ = name;
+        // A kept key goes out as it came in: a quaternion as given, not normalised.
+        reducer_.emplace(of(own), euler, source_, [this](const key& k) {
+            sample kept = key_row(k);
+            kept.rotation = k.given_quat.value_or(k.rotation);
+            row_(kept);
+        });
+    }
+    void add(const key& k) override { reducer_->add(k); }
+    void end_track() override {
+        reducer_->finish();
+        summaries_.emplace_back(name_, reducer_->summary());
+    }
+    void restart() override { summaries_.clear(); }
+    /// A line per track on `err`; with --report json, a JSON report on `out` instead.
+    void report(std::ostream& out, std::ostream& err) const override {
+        if (report_json_) return write_to_stream(out, json_report());
+        std::string text;
+        for (const auto& [name, s] : summaries_)
+            text += fmt::format("keyrot: {}{}: {} keys -> {}, largest error {:.6g} deg{}\n", source_,
+                                name.empty() ? "" : fmt::format(" track '{}'", name), s.keys, s.kept, s.worst_deg,
+                                s.worst_translation > 0 ? fmt::format(", {:.6g} in translation", s.worst_translation)
+                                                        : "");
+        err << text << std::flush;
+    }
+
+private:
+    /// How a track whose file states `own` is reduced.
+    reduce_options of(const std::optional<track_interpolation>& own) const {
+        reduce_options r = opts_;
+        if (own && !method_given_) r.how = own->rotation, r.translation_how = own->translation, r.scale_how = own->scale;
+        return r;
+    }
+    std::string json_report() const {
+        std::size_t keys = 0, kept = 0;
+        std::string tracks;
+        for (const auto& [name, s] : summaries_) {
+            keys += s.keys, kept += s.kept;
+            if (!tracks.empty()) tracks += ", ";
+            tracks += fmt::format("{{\"track\": {}, \"keys\": {}, \"kept\": {}, \"largest_error\": {}, "
+                                  "\"largest_translation_error\": {}}}",
+                                  json_quote(name), s.keys, s.kept, s.worst_deg, s.worst_translation);
+        }
+        return fmt::format("{{\"file\": {}, \"tol\": {}, \"tol_translation\": {}, \"keys\": {}, \"kept\": {}, "
+                           "\"tracks\": [{}]}}\n",
+                           json_quote(source_), opts_.tol_deg, opts_.tol_translation, keys, kept, tracks);
+    }
+
+    reduce_options opts_;
+    bool method_given_, report_json_;
+    std::string source_;
+    bool gltf_;
+    std::string name_;
+    std::optional<track_reducer> reducer_;
+    std::vector<std::pair<std::string, reduce_summary>> summaries_;
 };
 
 /// One input's resample or convert, settled before it is read.
@@ -304,7 +402,7 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
             if (!seen.tracks.empty()) p.rows->end_track();
             const channels carried = known ? known->tracks[seen.tracks.size()].carried : channels_of(k);
             rows.begin_track(name, carried, p.rows->written(settings.interpolation));
-            p.rows->begin_track(settings.euler, settings.interpolation, carried, row);
+            p.rows->begin_track(name, settings.euler, settings.interpolation, carried, row);
         }
         if (k.spline) rows.key_spline(*k.spline);
         p.rows->add(k);
@@ -323,7 +421,7 @@ void whole_rows(const transform_plan& p, const document& doc, const document_fac
         const track& t = doc.tracks[i];
         const channels carried = d.tracks[i].carried;
         rows.begin_track(t.name, carried, p.rows->written(t.interpolation));
-        p.rows->begin_track(t.euler, t.interpolation, carried, row);
+        p.rows->begin_track(t.name, t.euler, t.interpolation, carried, row);
         for (const key& k : t.keys) {
             if (k.spline) rows.key_spline(*k.spline);
             p.rows->add(k);
@@ -395,7 +493,7 @@ void transform_frames(const transform_plan& p, const input_source& src, std::ost
     std::vector<std::unique_ptr<row_source>> rows;
     for (std::size_t j = 0; j < joints; ++j) {
         rows.push_back(p.rows->another());
-        rows[j]->begin_track(source->joints[j].euler, std::nullopt, d.tracks[j].carried,
+        rows[j]->begin_track(source->joints[j].name, source->joints[j].euler, std::nullopt, d.tracks[j].carried,
                              [&file, j](const sample& s) { file.row(j, s); });
         rows[j]->add(first[j]);
     }
@@ -409,7 +507,9 @@ void transform_frames(const transform_plan& p, const input_source& src, std::ost
 void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
     warnings warn(err, src.source());
     if (p.out == format::bvh && p.in == format::bvh) return transform_frames(p, src, out, warn);
-    if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn)) return;
+    if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn))
+        return p.rows->report(out, err);
+    p.rows->restart();
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or
     // in a pipe or device named by -o).
@@ -428,6 +528,7 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
     else if (!stream_rows(p, src, &d, *table, warn))  // pass 1 took it: the document is not what it was
         throw error(changed_while_read(src.source()));
     table->finish();
+    p.rows->report(out, err);
 }
 
 /// Where --output-dir puts the output of input `name`: its file name, with
@@ -476,15 +577,24 @@ void check_output_names(const options& o, const std::vector<std::string>& inputs
 /// the formats, where its output goes.
 transform_plan plan_for(const options& o, const std::string& name, const input_source& src) {
     transform_plan p{o, reading(o, src.source()), nullptr, src.detect(o.from), format::csv, std::nullopt};
-    if (o.cmd == command::resample) p.rows = std::make_unique<frame_rows>(resampling(o), o.how.has_value());
-    else p.rows = std::make_unique<key_rows>();
     p.out = o.to.value_or(p.in);
     if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
     else if ((p.target = output_path(o)) && !o.to) p.out = format_of_path(*p.target).value_or(p.in);
+    if (o.cmd == command::resample) {
+        p.rows = std::make_unique<frame_rows>(resampling(o), o.how.has_value());
+    } else if (o.cmd == command::reduce) {
+        if (p.out == format::bvh)
+            throw usage_error("reduce: BVH has a line for every frame, so it cannot drop keys: expected --to csv, "
+                              "json, ndjson, gltf or glb, or -o with one of their extensions");
+        p.rows = std::make_unique<reduced_rows>(reducing(o), o.how.has_value(), o.report_json, src.source(),
+                                                is_gltf(p.out));
+    } else {
+        p.rows = std::make_unique<key_rows>();
+    }
     return p;
 }
 
-/// resample or convert one input; errors and warnings to `err`. Returns the status.
+/// resample, convert or reduce one input; errors and warnings to `err`. Returns the status.
 int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err) {
     try {
         if (is_standard_stream(name) && o.output_dir)
@@ -508,7 +618,7 @@ int transform_one(const options& o, const std::string& name, std::istream& in, s
 /// which job finished first.
 int transform_batch(const options& o, const std::vector<std::string>& inputs, std::istream& in, std::ostream& out,
                     std::ostream& err) {
-    std::vector<std::string> messages(inputs.size());
+    std::vector<std::string> messages(inputs.size()), reports(inputs.size());  // reduce --report json
     std::vector<int> statuses(inputs.size(), 0);
     std::exception_ptr stop;  // a bad flag (or no memory left) stops everything, as for one file
     std::atomic<std::size_t> next{0}, done{0};
@@ -516,9 +626,10 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
     const auto work = [&] {
         for (std::size_t i; (i = next++) < inputs.size();) {
             try {
-                std::ostringstream messages_of_file;
-                statuses[i] = transform_one(o, inputs[i], in, out, messages_of_file);
+                std::ostringstream messages_of_file, report_of_file;  // (the outputs go to files)
+                statuses[i] = transform_one(o, inputs[i], in, report_of_file, messages_of_file);
                 messages[i] = messages_of_file.str();
+                reports[i] = report_of_file.str();
                 const std::size_t finished = ++done;
                 if (o.progress) {
                     const std::lock_guard lock(progress_mutex);
@@ -547,6 +658,7 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
     int status = 0;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         err << messages[i];
+        out << reports[i];
         status = std::max(status, statuses[i]);
     }
     return status;

@@ -48,7 +48,8 @@ KEYROT_FMA_CLONES quat slerp_segment::at(double h) const noexcept {
 quat slerp(quat a, quat b, double h) noexcept { return slerp_segment(a, b).at(h); }
 
 KEYROT_FMA_CLONES quat nlerp(quat a, quat b, double h) noexcept {
-    if (h == 0) return a;
+    // (a hold between equal keys is exactly the key, as slerp's is, not the lerp's rounding)
+    if (h == 0 || (a.w == b.w && a.x == b.x && a.y == b.y && a.z == b.z)) return a;
     if (h == 1) return b;
     const double g = 1 - h;
     const quat l{std::fma(h, b.w, g * a.w), std::fma(h, b.x, g * a.x), std::fma(h, b.y, g * a.y),

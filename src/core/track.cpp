@@ -84,7 +84,14 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     if (!k.unknown.empty()) unknown_field(k.unknown, where(source, k.at), s, warn);
     const auto& v = k.values;
     switch (k.kind) {
-        case rep::quat: out.rotation = unit_quaternion(k, s, warn, out.renormalised); break;
+        case rep::quat: {
+            out.rotation = unit_quaternion(k, s, warn, out.renormalised);
+            const quat given{v[0], v[1], v[2], v[3]};
+            if (given.w != out.rotation.w || given.x != out.rotation.x || given.y != out.rotation.y ||
+                given.z != out.rotation.z)
+                out.given_quat = given;
+            break;
+        }
         case rep::axis_angle: out.rotation = axis_angle_rotation(k, s, source); break;
         case rep::rotvec:
             out.rotation = from_rotvec({v[0], v[1], v[2]}, s.angles);

@@ -10,11 +10,11 @@ _keyrot() {
     elif [[ $prev == = ]] && ((COMP_CWORD >= 2)); then
         prev=${COMP_WORDS[COMP_CWORD - 2]}
     fi
-    local commands="resample convert slerp compare info help"
+    local commands="resample convert slerp compare info reduce help"
     local command="" i
     for ((i = 1; i < COMP_CWORD; i++)); do
         case ${COMP_WORDS[i]} in
-            resample | convert | slerp | compare | info | help) command=${COMP_WORDS[i]}; break ;;
+            resample | convert | slerp | compare | info | reduce | help) command=${COMP_WORDS[i]}; break ;;
         esac
     done
 
@@ -29,6 +29,7 @@ _keyrot() {
         slerp) flags="-t --steps --max-frames --from-rep $interpolation $output" ;;
         compare) flags="--tol --tol-translation --report -o --output $input $conventions" ;;
         info) flags="-o --output --to --precision $input $conventions" ;;
+        reduce) flags="--output-dir --jobs $input $output $interpolation --tol --tol-translation --report" ;;
         help) flags="" ;;
         *) flags="--version" ;;
     esac
@@ -67,7 +68,7 @@ _keyrot() {
     elif [[ -z $command ]]; then
         COMPREPLY=($(compgen -W "$commands" -- "$cur"))
     elif [[ $command == help ]]; then
-        ((COMP_CWORD == i + 1)) && COMPREPLY=($(compgen -W "formats resample convert slerp compare info" -- "$cur"))
+        ((COMP_CWORD == i + 1)) && COMPREPLY=($(compgen -W "formats resample convert slerp compare info reduce" -- "$cur"))
     elif [[ $command != slerp ]]; then
         COMPREPLY=($(compgen -f -- "$cur"))  # slerp's operands are numbers
     fi

@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const unsigned pick = data[0];
     options o;
     static constexpr std::array<command, 4> commands = {command::resample, command::convert, command::info,
-                                                        command::resample};
+                                                        command::reduce};
     o.cmd = commands[pick & 3u];
     o.how = static_cast<method>((pick >> 2) % 5);
     o.way = (pick & 0x20u) ? path::direct : path::shortest;
@@ -29,6 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.radians = pick & 0x40u;
     o.fps = (pick & 0x80u) ? 30 : 24;
     o.precision = (pick & 0x08u) ? std::optional<int>(3) : std::nullopt;
+    o.tol_deg = (pick & 0x08u) ? 0 : 0.5;  // reduce: exact keys only, or many dropped
     o.max_frames = 1e5;  // keeps each run short; the limit itself is tested elsewhere
     // Standard input is a file in memory, which keyrot reads in place: no
     // temporary file on disk for every run.

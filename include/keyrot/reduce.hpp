@@ -1,0 +1,86 @@
+#pragma once
+// Key reduction: the fewest of a track's keys that, interpolated as the
+// track is played, stay within a tolerance of every key.
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "keyrot/interpolate.hpp"
+#include "keyrot/track.hpp"
+
+namespace keyrot {
+
+struct reduce_options {
+    method how = method::slerp;
+    path way = path::shortest;
+    /// How translations and scales are interpolated, where not as `how`
+    /// says: step holds, any other method is linear (resample_options').
+    std::optional<method> translation_how = std::nullopt, scale_how = std::nullopt;
+    double tol_deg = 0.01;           ///< geodesic angle, sign-invariant
+    double tol_translation = 0.001;  ///< distance, for translations and scales
+};
+
+/// What reducing a track kept, and the largest errors it allowed.
+struct reduce_summary {
+    std::size_t keys = 0, kept = 0;
+    double worst_deg = 0, worst_translation = 0;  ///< at the keys dropped
+};
+
+/// Reduces one track whose keys arrive one at a time. The kept keys come out
+/// through `keep`, in order and unchanged: always the first; the last too,
+/// unless every key is within tolerance of the first (the track is then its
+/// first key, held). The guarantee: the kept keys, interpolated with
+/// opts.how as resample plays them, are within opts.tol_deg and
+/// opts.tol_translation of every key at its time. Keys are kept greedily: from a kept key, the
+/// farthest next key that keeps the guarantee for every key between, found
+/// by doubling the stretch, then halving between the last good and the
+/// first bad one. Memory holds the keys since the last kept one, at most
+/// max_stretch of them (squad, whose curve near a key depends on the kept
+/// keys on both sides: the track).
+class track_reducer {
+public:
+    /// Throws usage_error for method::euler without a sequence, and for
+    /// method::cubicspline (its tangents belong to the keys it has).
+    track_reducer(const reduce_options& opts, const std::optional<euler_seq>& seq, std::string source,
+                  std::function<void(const key&)> keep);
+    /// Times strictly increasing (check_order). Throws input_error, naming
+    /// the key in `source`, for a CUBICSPLINE key.
+    void add(const key& k);
+    void finish();
+    const reduce_summary& summary() const { return summary_; }
+
+private:
+    struct errors {
+        bool ok = true;
+        double deg = 0, translation = 0;
+        std::size_t bad = 0;  // where not ok: the key farthest out of tolerance (of those looked at)
+    };
+    /// The errors at keys `from` + 1 .. `to` - 1 of keys_ played from the
+    /// kept keys `from` and `to` (squad: with `before` and `after` too); up
+    /// to the first key out of tolerance, or with `whole` all of them.
+    errors between(std::size_t from, std::size_t to, std::optional<std::size_t> before = std::nullopt,
+                   std::optional<std::size_t> after = std::nullopt, bool whole = false) const;
+    void advance(bool end);
+    void emit(std::size_t i, const errors& e);
+    void reduce_squad();
+
+    /// The most keys a kept key reaches (memory holds them): a stretch of
+    /// more (136 s at 120 Hz) keeps a key where it ends.
+    static constexpr std::size_t max_stretch = std::size_t{1} << 14;
+
+    reduce_options opts_;
+    std::optional<euler_seq> seq_;
+    std::string source_;
+    std::function<void(const key&)> keep_;
+    std::vector<key> keys_;  // from the last kept key (squad: the whole track)
+    std::size_t good_ = 0;   // the farthest key known to be reachable from keys_[0]
+    errors good_errors_;
+    key first_;
+    double from_first_deg_ = 0, from_first_translation_ = 0;  // the farthest any key is from the first
+    bool held_ = false;                                       // every key so far within tolerance of the first
+    std::vector<key> pending_;  // kept after the first while held_: out once the track moves
+    reduce_summary summary_;
+};
+
+}  // namespace keyrot

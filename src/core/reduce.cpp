@@ -1,0 +1,195 @@
+#include "keyrot/reduce.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "keyrot/convert.hpp"
+#include "keyrot/error.hpp"
+
+namespace keyrot {
+namespace {
+
+double distance(const std::optional<vec3>& a, const std::optional<vec3>& b) { return a && b ? norm(*a - *b) : 0; }
+
+/// A vector channel between keys `a` and `b` at `h`, as resample plays it.
+std::optional<vec3> vector_at(const std::optional<vec3>& a, const std::optional<vec3>& b, double h, method how) {
+    if (!a || !b) return std::nullopt;
+    return how == method::step ? *a : (1 - h) * *a + h * *b;
+}
+
+}  // namespace
+
+track_reducer::track_reducer(const reduce_options& opts, const std::optional<euler_seq>& seq, std::string source,
+                             std::function<void(const key&)> keep)
+    : opts_(opts), seq_(seq), source_(std::move(source)), keep_(std::move(keep)) {
+    check_method(opts.how, seq);
+    if (opts.how == method::cubicspline)
+        throw usage_error(
+            "reduce plays keys as slerp, nlerp, squad, step or euler: expected one of them as --method "
+            "(a CUBICSPLINE track's tangents belong to the keys it has)");
+}
+
+track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, std::optional<std::size_t> before,
+                                             std::optional<std::size_t> after, bool whole) const {
+    const key& a = keys_[from];
+    const key& b = keys_[to];
+    errors e;
+    // Only keys of the same channels as both ends are played from them.
+    if (channels_of(a) != channels_of(b) && to != from + 1) return {false, 0, 0, from + 1};
+    segment_builder builder(opts_.how, opts_.way, seq_);
+    if (before) builder.add(keys_[*before]);
+    builder.add(a);
+    builder.add(b);
+    if (after) builder.add(keys_[*after]);
+    segment s;
+    do builder.pop(s, true);
+    while (s.t0 != a.time);
+    const segment_curve curve = s.curve();
+    const method translation_how = opts_.translation_how.value_or(opts_.how);
+    const method scale_how = opts_.scale_how.value_or(opts_.how);
+    double bad_deg = -1, bad_translation = -1;
+    for (std::size_t i = from + 1; i < to && (e.ok || whole); ++i) {
+        const key& k = keys_[i];
+        if (channels_of(k) != channels_of(a)) return {false, e.deg, e.translation, i};
+        const double h = (k.time - a.time) / (b.time - a.time);
+        const double deg = from_radians(geodesic_angle(curve.at(h), k.rotation), angle_unit::degrees);
+        const double translation =
+            std::max(distance(vector_at(a.translation, b.translation, h, translation_how), k.translation),
+                     distance(vector_at(a.scale, b.scale, h, scale_how), k.scale));
+        e.deg = std::max(e.deg, deg), e.translation = std::max(e.translation, translation);
+        if (deg <= opts_.tol_deg && translation <= opts_.tol_translation) continue;
+        e.ok = false;
+        // The worst key out: by its rotation, or by its translation where no rotation is out.
+        const double rotation_out = deg > opts_.tol_deg ? deg : 0;
+        if (rotation_out > bad_deg || (rotation_out == bad_deg && translation > bad_translation))
+            e.bad = i, bad_deg = rotation_out, bad_translation = translation;
+    }
+    return e;
+}
+
+void track_reducer::add(const key& k) {
+    if (k.spline)
+        throw input_error(where(source_, k.at),
+                          "a CUBICSPLINE key: expected LINEAR or STEP keys, whose values are the "
+                          "curve (resample the track first)");
+    keys_.push_back(k);
+    if (summary_.keys++ == 0) {
+        first_ = k;
+        if (opts_.how != method::squad) emit(0, {});
+        held_ = true;
+    }
+    from_first_deg_ =
+        std::max(from_first_deg_, from_radians(geodesic_angle(first_.rotation, k.rotation), angle_unit::degrees));
+    from_first_translation_ = std::max(
+        {from_first_translation_, distance(first_.translation, k.translation), distance(first_.scale, k.scale)});
+    if (channels_of(k) != channels_of(first_)) from_first_translation_ = INFINITY;
+    if (held_ && !(from_first_deg_ <= opts_.tol_deg && from_first_translation_ <= opts_.tol_translation)) {
+        held_ = false;  // the track moves: the keys kept meanwhile go out
+        for (const key& p : pending_) keep_(p);
+        pending_.clear();
+    }
+    if (opts_.how != method::squad) advance(false);
+}
+
+void track_reducer::advance(bool end) {
+    while (keys_.size() > 1) {
+        const std::size_t newest = keys_.size() - 1;
+        if (good_ == 0) good_ = 1, good_errors_ = {};  // neighbours: nothing between them
+        const std::size_t limit = std::min(2 * good_, max_stretch);
+        if (limit > newest && !end) return;  // the next key to try has not come
+        const std::size_t probe = std::min(limit, newest);
+        if (probe != good_) {
+            errors e = between(0, probe);
+            if (e.ok) {
+                good_ = probe, good_errors_ = e;
+                continue;
+            }
+            for (std::size_t bad = probe; bad - good_ > 1;) {
+                const std::size_t mid = good_ + (bad - good_) / 2;
+                if ((e = between(0, mid)).ok)
+                    good_ = mid, good_errors_ = e;
+                else
+                    bad = mid;
+            }
+        }
+        // Nothing farther to try (the end, or the longest stretch): good_ is kept.
+        emit(good_, good_errors_);
+        keys_.erase(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(good_));
+        good_ = 0;
+    }
+}
+
+void track_reducer::emit(std::size_t i, const errors& e) {
+    summary_.worst_deg = std::max(summary_.worst_deg, e.deg);
+    summary_.worst_translation = std::max(summary_.worst_translation, e.translation);
+    ++summary_.kept;
+    if (held_ && summary_.kept > 1)
+        pending_.push_back(keys_[i]);
+    else
+        keep_(keys_[i]);
+}
+
+void track_reducer::finish() {
+    if (summary_.keys == 0) return;
+    // Within tolerance of the first key everywhere: that key, held (the
+    // methods but squad gave it out at once).
+    if (held_) {
+        if (opts_.how == method::squad) keep_(first_);
+        summary_ = {summary_.keys, 1, from_first_deg_, from_first_translation_};
+        return;
+    }
+    if (opts_.how == method::squad) return reduce_squad();
+    advance(true);
+}
+
+/// Squad's curve between two kept keys bends with the kept keys either
+/// side, so the greedy pass guesses them (the key kept before, and the key
+/// as far after as the stretch is long); then the track is played from the
+/// kept keys, and where a key is out of tolerance it is kept too, until
+/// none is.
+void track_reducer::reduce_squad() {
+    std::vector<std::size_t> kept{0};
+    const std::size_t last = keys_.size() - 1;
+    while (kept.back() != last) {
+        const std::size_t from = kept.back();
+        const auto before = kept.size() > 1 ? std::optional(kept[kept.size() - 2]) : std::nullopt;
+        const auto check = [&](std::size_t to) {
+            return between(from, to, before, to < last ? std::optional(std::min(last, 2 * to - from)) : std::nullopt)
+                .ok;
+        };
+        std::size_t good = from + 1, bad = last + 1;
+        while (good < last && bad == last + 1) {
+            const std::size_t probe = std::min(2 * good - from, last);
+            (check(probe) ? good : bad) = probe;
+        }
+        while (bad - good > 1) {
+            const std::size_t mid = good + (bad - good) / 2;
+            (check(mid) ? good : bad) = mid;
+        }
+        kept.push_back(good);
+    }
+    // A stretch's curve bends with the kept keys either side of it.
+    const auto stretch = [&](std::size_t j) {
+        return between(kept[j], kept[j + 1], j > 0 ? std::optional(kept[j - 1]) : std::nullopt,
+                       j + 2 < kept.size() ? std::optional(kept[j + 2]) : std::nullopt, true);
+    };
+    for (std::size_t j = 0; j + 1 < kept.size();) {
+        const errors e = stretch(j);
+        if (e.ok) {
+            ++j;
+            continue;
+        }
+        // The key farthest out is kept too, which bends the stretches either side: back to the one before.
+        kept.insert(kept.begin() + static_cast<std::ptrdiff_t>(j) + 1, e.bad);
+        j = j > 0 ? j - 1 : 0;
+    }
+    for (std::size_t j = 0; j + 1 < kept.size(); ++j) {
+        const errors e = stretch(j);
+        summary_.worst_deg = std::max(summary_.worst_deg, e.deg);
+        summary_.worst_translation = std::max(summary_.worst_translation, e.translation);
+    }
+    for (const std::size_t i : kept) keep_(keys_[i]);
+    summary_.kept = kept.size();
+}
+
+}  // namespace keyrot
