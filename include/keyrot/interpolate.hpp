@@ -102,6 +102,8 @@ public:
     /// The next segment whose keys (and look-ahead) have arrived; with
     /// `end` (no more keys) also the last one. False when there is none.
     bool pop(segment& out, bool end);
+    /// Forgets the keys: the next one added begins a track (its memory kept).
+    void clear() noexcept { window_.clear(); }
 
 private:
     struct entry {

@@ -73,8 +73,9 @@ private:
     std::optional<euler_seq> seq_;
     std::string source_;
     std::function<void(const key&)> keep_;
-    std::vector<key> keys_;  // from the last kept key (squad: the whole track)
-    std::size_t good_ = 0;   // the farthest key known to be reachable from keys_[0]
+    mutable segment_builder builder_;  // between()'s, kept for its memory
+    std::vector<key> keys_;            // from the last kept key (squad: the whole track)
+    std::size_t good_ = 0;             // the farthest key known to be reachable from keys_[0]
     errors good_errors_;
     key first_;
     double from_first_deg_ = 0, from_first_translation_ = 0;  // the farthest any key is from the first

@@ -21,7 +21,7 @@ std::optional<vec3> vector_at(const std::optional<vec3>& a, const std::optional<
 
 track_reducer::track_reducer(const reduce_options& opts, const std::optional<euler_seq>& seq, std::string source,
                              std::function<void(const key&)> keep)
-    : opts_(opts), seq_(seq), source_(std::move(source)), keep_(std::move(keep)) {
+    : opts_(opts), seq_(seq), source_(std::move(source)), keep_(std::move(keep)), builder_(opts.how, opts.way, seq) {
     check_method(opts.how, seq);
     if (opts.how == method::cubicspline)
         throw usage_error(
@@ -36,7 +36,8 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
     errors e;
     // Only keys of the same channels as both ends are played from them.
     if (channels_of(a) != channels_of(b) && to != from + 1) return {false, 0, 0, from + 1};
-    segment_builder builder(opts_.how, opts_.way, seq_);
+    segment_builder& builder = builder_;
+    builder.clear();
     if (before) builder.add(keys_[*before]);
     builder.add(a);
     builder.add(b);
