@@ -32,12 +32,12 @@ struct reduce_summary {
 /// unless every key is within tolerance of the first (the track is then its
 /// first key, held). The guarantee: the kept keys, interpolated with
 /// opts.how as resample plays them, are within opts.tol_deg and
-/// opts.tol_translation of every key at its time. Keys are kept greedily: from a kept key, the
-/// farthest next key that keeps the guarantee for every key between, found
-/// by doubling the stretch, then halving between the last good and the
-/// first bad one. Memory holds the keys since the last kept one, at most
-/// max_stretch of them (squad, whose curve near a key depends on the kept
-/// keys on both sides: the track).
+/// opts.tol_translation of every key at its time. Keys are kept greedily:
+/// from a kept key, the farthest next key that keeps the guarantee for
+/// every key between, found by doubling the stretch, then halving between
+/// the last good and the first bad one. Memory holds the keys since the
+/// last kept one, at most max_stretch of them (squad, whose curve near a
+/// key depends on the kept keys on both sides: the track).
 class track_reducer {
 public:
     /// Throws usage_error for method::euler without a sequence, and for
