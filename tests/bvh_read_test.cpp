@@ -20,14 +20,25 @@ const std::string take =
     "    End Site\n    {\n      OFFSET 0 -1 0\n    }\n  }\n}\nMOTION\nFrames: 3\nFrame Time: 0.04\n"
     "0 0 0 0 0 0 0 0 0\n1 2 3 10 20 30 40 50 60\n\n4 5 6 -10 -20 -30 -40 -50 -60\n";
 
+/// The reading options of "take.bvh".
+read_options take_options() {
+    read_options o;
+    o.source = "take.bvh";
+    return o;
+}
+
+/// The hierarchy of `take`.
+std::shared_ptr<bvh_source> take_source() {
+    std::istringstream in(take);
+    return read_bvh_source(in, take_options());
+}
+
 /// Each track's keys as the reader made by `make` gives them.
 template <typename Make>
 std::pair<std::map<std::string, std::vector<raw_key>>, std::string> by_track(
     const std::string& text, Make make, std::vector<std::string>* order = nullptr) {
-    read_options o;
-    o.source = "take.bvh";
     std::istringstream in(text);
-    const auto reader = make(in, o);
+    const auto reader = make(in, take_options());
     const reading_result r = read_all(*reader);
     std::map<std::string, std::vector<raw_key>> tracks;
     for (const auto& [name, k] : r.keys) {
@@ -83,19 +94,13 @@ TEST_CASE("BVH: both readers stop at the same error, after the same keys") {
         CHECK(columns.find(message) != std::string::npos);
         CHECK(frames == columns);
         std::istringstream in(text);
-        read_options o;
-        o.source = "take.bvh";
-        CHECK_THROWS_WITH_AS(check_bvh_frames(in, o), doctest::Contains(message.c_str()), input_error);
+        CHECK_THROWS_WITH_AS(check_bvh_frames(in, take_options()), doctest::Contains(message.c_str()), input_error);
     }
 }
 
 TEST_CASE("bvh_output: a frame line once every joint has its row, in its channel order") {
-    read_options o;
-    o.source = "take.bvh";
-    std::istringstream in(take);
-    const auto source = read_bvh_source(in, o);
     std::ostringstream out;
-    bvh_output file(std::nullopt, out, source, 2, 0.5, {});
+    bvh_output file(std::nullopt, out, take_source(), 2, 0.5, {});
     const auto row = [](double time, quat q, vec3 position) {
         sample s;
         s.time = time;
@@ -119,12 +124,8 @@ TEST_CASE("bvh_output: a frame line once every joint has its row, in its channel
 }
 
 TEST_CASE("bvh_output: rows that do not make the frames stated are an error") {
-    read_options o;
-    o.source = "take.bvh";
-    std::istringstream in(take);
-    const auto source = read_bvh_source(in, o);
     std::ostringstream out;
-    bvh_output file(std::nullopt, out, source, 2, 0.5, {});
+    bvh_output file(std::nullopt, out, take_source(), 2, 0.5, {});
     sample s;
     file.row(0, s);
     file.row(1, s);
