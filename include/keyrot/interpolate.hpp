@@ -84,6 +84,7 @@ public:
 
 private:
     friend class segment;
+    explicit segment_curve(const segment& keys) noexcept : keys_(keys) {}
     segment keys_;
     slerp_segment arc_, control_arc_;  // slerp, squad: q0 to q1; squad: s0 to s1
 };

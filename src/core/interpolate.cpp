@@ -64,8 +64,7 @@ quat squad_control(quat prev, quat cur, quat next) noexcept {
 }
 
 segment_curve segment::curve() const noexcept {
-    segment_curve c;
-    c.keys_ = *this;
+    segment_curve c(*this);
     if (how_ == method::slerp || how_ == method::squad) c.arc_ = slerp_segment(q0, q1);
     if (how_ == method::squad) c.control_arc_ = slerp_segment(s0_, s1_);
     return c;
@@ -121,9 +120,10 @@ quat segment_builder::add(const key& k) {
     if (flips && !window_.empty() && dot(window_.back().q, q) < 0) q = -q;
     std::array<double, 3> e{};
     if (how_ == method::euler) e = k.euler ? *k.euler : to_euler(k.rotation, *seq_).angles;
+    window_.push_back({k.time, q, q, e, {}});  // s = q until both neighbours are known
     // A key without a spline passes its rotation, with no tangents.
-    const spline_key spline = k.spline.value_or(spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}});
-    window_.push_back({k.time, q, q, e, spline});  // s = q until both neighbours are known
+    if (how_ == method::cubicspline)
+        window_.back().spline = k.spline.value_or(spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}});
     const std::size_t n = window_.size();
     if (how_ == method::squad && n >= 3) window_[n - 2].s = squad_control(window_[n - 3].q, window_[n - 2].q, q);
     return q;
@@ -139,7 +139,7 @@ bool segment_builder::pop(segment& out, bool end) {
     out.t0 = a.time, out.t1 = b.time, out.q0 = a.q, out.q1 = b.q;
     out.s0_ = a.s, out.s1_ = b.s;
     if (how_ == method::euler) out.e0_ = a.e, out.e1_ = b.e, out.seq_ = *seq_;
-    out.spline0_ = a.spline, out.spline1_ = b.spline;
+    if (how_ == method::cubicspline) out.spline0_ = a.spline, out.spline1_ = b.spline;
     window_.erase(window_.begin());
     return true;
 }
