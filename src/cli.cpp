@@ -20,8 +20,9 @@ namespace {
 
 /// The flag values as CLI11 fills them, before they become typed options.
 struct raw_flags {
-    std::string from, to, rep, euler, out_euler, quat_order = "wxyz", method,
-                        path = "shortest", from_rep = "quat", report;
+    std::string from, to, rep, euler, out_euler, quat_order, method,
+                        path = "shortest", from_rep = "quat", report,
+                        settings_line;
     bool out_degrees = false, out_radians = false;
     std::optional<int> precision;
     std::optional<double> key_fps;
@@ -43,7 +44,7 @@ void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--from", f.from, "input format (default: by extension, else sniffed)")
         ->check(CLI::IsMember(names<format>()));
     sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
-    sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: --fps, 24)");
+    sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: the file's, else 24, whatever --fps is)");
     sub.add_option("--max-bytes", o.max_bytes,
                    fmt::format("most bytes a CSV or NDJSON line, a JSON document or a glTF file read whole, may take (default {}: "
                                "{} MiB)",
@@ -57,15 +58,21 @@ void add_convention_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.option_defaults()->group("Conventions");
     sub.add_option("--euler", f.euler, "Euler sequence of the input, e.g. ZYX (intrinsic) or xyz (extrinsic)");
     sub.add_option("--quat-order", f.quat_order,
-                   fmt::format("order of quaternion arrays and output columns (default: {})", f.quat_order))
+                   fmt::format("order of quaternion arrays and output columns (default: {})", to_string(quat_order::wxyz)))
         ->check(CLI::IsMember(names<quat_order>()));
     sub.add_flag("--radians", o.radians, "angles in radians, input and output (default: degrees)");
+}
+
+void add_fsync_flag(CLI::App& sub, options& o) {
+    sub.add_flag("--fsync", o.fsync,
+                 "output files durable against a power cut, not only replaced whole (waits for the disk)");
 }
 
 /// Flags for writing rotations, and the conventions.
 void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.option_defaults()->group("Output");
     sub.add_option("-o,--output", o.output, "output file (default: standard output)");
+    add_fsync_flag(sub, o);
     sub.add_option("--to", f.to, "output format (default: extension of -o, else the input format)")
         ->check(CLI::IsMember(names<format>()));
     sub.add_option("--rep", f.rep, "output representation (default: axis-angle; reduce: quat)")
@@ -77,6 +84,11 @@ void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--precision", f.precision, "digits after the decimal point (default: shortest round trip)");
     sub.add_flag("--euler-continuous", o.euler_continuous,
                  "Euler output continuous from frame to frame (always for BVH), not in canonical ranges");
+    sub.add_option("--settings-line", f.settings_line,
+                   fmt::format("CSV, NDJSON: a first line of settings where keyrot would misread the output "
+                               "without it (radians, frames at a rate not 24), always, or never (default: {})",
+                               to_string(settings_line::needed)))
+        ->check(CLI::IsMember(names<settings_line>()));
     add_convention_flags(sub, o, f);
 }
 
@@ -114,7 +126,7 @@ void finish(options& o, const raw_flags& f) {
     o.representation = !f.rep.empty() ? *parse<rep>(f.rep) : o.cmd == command::reduce ? rep::quat : rep::axis_angle;
     if (!f.euler.empty()) o.euler = euler_flag("--euler", f.euler);
     if (!f.out_euler.empty()) o.out_euler = euler_flag("--out-euler", f.out_euler);
-    o.order = *parse<quat_order>(f.quat_order);
+    if (!f.quat_order.empty()) o.order = *parse<quat_order>(f.quat_order), o.order_given = true;
     if (f.out_degrees) o.out_angles = angle_unit::degrees;
     if (f.out_radians) o.out_angles = angle_unit::radians;
     if (f.precision) {
@@ -123,6 +135,7 @@ void finish(options& o, const raw_flags& f) {
         o.precision = f.precision;
     }
     o.from_rep = *parse<rep>(f.from_rep);
+    if (!f.settings_line.empty()) o.settings_when = *parse<settings_line>(f.settings_line);
     o.report_json = f.report == "json";
     if (!f.method.empty()) o.how = parse<method>(f.method);
     o.way = *parse<path>(f.path);
@@ -211,6 +224,7 @@ void define_compare(CLI::App& sub, options& o, raw_flags& f) {
     sub.option_defaults()->group("Output");
     sub.add_option("--report", f.report, "json: a JSON report on standard output")->check(CLI::IsMember({"json"}));
     sub.add_option("-o,--output", o.output, "file for the summary, or the report (default: standard output)");
+    add_fsync_flag(sub, o);
     add_input_flags(sub, o, f);
     add_convention_flags(sub, o, f);
     sub.footer(R"(Exit status: 0 every row within tolerance, 1 some row differs or is missing, 2 an error.
@@ -247,6 +261,7 @@ void define_info(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("files", o.inputs, "input files ('-' or none: standard input)");
     sub.option_defaults()->group("Output");
     sub.add_option("-o,--output", o.output, "output file; a .json name writes JSON (default: standard output)");
+    add_fsync_flag(sub, o);
     sub.add_option("--to", f.to, "json: a JSON description instead of text")->check(CLI::IsMember({"json"}));
     sub.add_option("--precision", f.precision, "digits after the decimal point in the text (default 6)");
     add_input_flags(sub, o, f);

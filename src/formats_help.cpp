@@ -34,7 +34,7 @@ std::string formats_help() {
         if (r == rep::euler) out += "  (angles in the order of --euler's sequence)";
         out += '\n';
     }
-    out += fmt::format("Beside them: time or frame (at --key-fps); track (optional, names the track); {} (optional "
+    out += fmt::format("Beside them: time or frame (at --key-fps, default 24); track (optional, names the track); {} (optional "
                        "translation);\n{} (optional scale).\n",
                        fmt::join(translation_columns, ","), fmt::join(scale_columns, ","));
     out += "\nJSON: a document {\"keys\": [KEY, ...]}, a bare array [KEY, ...], or {\"tracks\": {\"NAME\": {\"keys\": [...]}, "
@@ -44,7 +44,7 @@ std::string formats_help() {
            "representation:\n";
     for (const auto& [r, fields] : json_fields) out += fmt::format("  {:<12}{}\n", to_string(r), fields);
     out += "\nNDJSON: one KEY object per line, with \"track\" when there are tracks; a first line without a rotation\n"
-           "holds the settings, as keyrot writes it.\n"
+           "holds the settings, as keyrot writes it where needed (--settings-line).\n"
            "\nglTF 2.0 (.gltf with its buffers, or .glb): each node an animation moves is a track named after it\n"
            "(\"<animation>/<node>\" when there are several animations; --animation picks one), its rotation,\n"
            "translation and scale channels interpolated as their samplers say (LINEAR, STEP, CUBICSPLINE). A glTF\n"
@@ -56,8 +56,9 @@ std::string formats_help() {
            "angles are continuous from frame to frame.\n"
            "\nA file's format is known by its extension (.csv, .json, .ndjson or .jsonl, .gltf, .glb, .bvh), else by\n"
            "its content.\n"
-           "keyrot reads all it writes: a JSON document with \"frames\" in place of \"keys\", and \"# keyrot {...}\" "
-           "lines\nstating the settings of a CSV file.\n";
+           "keyrot reads all it writes: a JSON document with \"frames\" in place of \"keys\", and a CSV file's "
+           "first line\n\"# keyrot {...}\", which states its settings where keyrot would misread it without (radians, "
+           "frame\nnumbers at a rate other than 24; --settings-line).\n";
     return out;
 }
 

@@ -3,6 +3,7 @@
 // once every joint has it.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -78,6 +79,31 @@ TEST_CASE("BVH: the frame reader gives the column reader's keys, frame after fra
     CHECK(leg.at.line == 22);     // after the blank line
     CHECK(leg.values[0] == -40);  // Yrotation first: the sequence YXZ
     CHECK(frames.at("Hips")[1].translation->y == 2);
+}
+
+TEST_CASE("BVH: joints of one name are tracks '<name>', '<name>.2', '<name>.3'") {
+    // Hips, and three joints named Leg, the third below the second and below
+    // a joint named "Leg.2" (a name the second Leg took first).
+    std::string text = take;
+    const std::string leg = "  JOINT Leg\n  {\n    OFFSET 0 -1 0\n    CHANNELS 3 Yrotation Xrotation Zrotation\n";
+    text.replace(text.find(leg), leg.size(), leg + leg + "  JOINT Leg.2\n  {\n    OFFSET 0 -1 0\n    CHANNELS 1 Zrotation\n" + leg);
+    const std::string end = "    End Site\n    {\n      OFFSET 0 -1 0\n    }\n  }\n";
+    text.replace(text.find(end), end.size(), end + "  }\n  }\n  }\n");
+    const std::string frames = "0 0 0 0 0 0 0 0 0\n1 2 3 10 20 30 40 50 60\n\n4 5 6 -10 -20 -30 -40 -50 -60\n";
+    text.replace(text.find(frames), frames.size(), "0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n1 2 3 10 20 30 40 50 60 1 2 3 7 4 5 6\n\n"
+                                                  "4 5 6 -10 -20 -30 -40 -50 -60 1 2 3 7 4 5 6\n");
+    for (const bool frame_major : {false, true}) {
+        CAPTURE(frame_major);
+        std::vector<std::string> order;
+        const auto [tracks, error] = frame_major ? by_track(text, make_bvh_frame_reader, &order)
+                                                 : by_track(text, make_bvh_reader, &order);
+        CHECK(error.empty());
+        std::vector<std::string> names;  // in order of first appearance
+        for (const std::string& name : order)
+            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+        CHECK(names == std::vector<std::string>{"Hips", "Leg", "Leg.2", "Leg.2.2", "Leg.3"});
+        CHECK(tracks.size() == 5);
+    }
 }
 
 TEST_CASE("BVH: both readers stop at the same error, after the same keys") {

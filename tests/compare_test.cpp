@@ -21,7 +21,7 @@ key at(double time, quat q, std::optional<double> frame = std::nullopt) {
     return k;
 }
 
-track named(std::string name, std::vector<key> keys) { return track{std::move(name), std::nullopt, std::move(keys)}; }
+track named(std::string name, std::vector<key> keys) { return track{std::move(name), std::nullopt, std::move(keys), std::nullopt}; }
 
 }  // namespace
 
@@ -57,6 +57,34 @@ TEST_CASE("rows are matched by frame when both have one, else by time") {
     CHECK(c.failed == 2);  // one missing from ACTUAL, one only in ACTUAL
     CHECK(c.rows[0].problem == "missing from ACTUAL");
     CHECK(c.rows[1].problem == "only in ACTUAL");
+}
+
+TEST_CASE("frames that carry their times are matched by frame only where the grids agree") {
+    // keyrot's resampled frames state no rate: 4 fps against 8 fps, whose frame 1 is 0.25 s against 0.125 s
+    const quat turned = exp(vec3{0, 0, 0.1});
+    std::vector<key> four, eight;
+    for (int f = 0; f <= 4; ++f) four.push_back(at(f / 4.0, exp(vec3{0, 0, 0.1 * f / 4.0}), f));
+    for (int f = 0; f <= 8; ++f) eight.push_back(at(f / 8.0, exp(vec3{0, 0, 0.1 * f / 8.0}), f));
+    auto c = compare_tracks({named("", four)}, {named("", eight)}, {});
+    REQUIRE(c.frame_rates);
+    CHECK(c.frame_rates->first == 4);
+    CHECK(c.frame_rates->second == 8);
+    CHECK(c.failed == 4);  // the 4 frames of 8 fps between the 4 fps ones
+    CHECK(c.rows.size() == 9);
+    CHECK(std::count_if(c.rows.begin(), c.rows.end(), [](const auto& r) { return r.problem == "only in ACTUAL"; }) == 4);
+    // at one rate, times written to four decimals still match by frame
+    c = compare_tracks({named("", {at(1 / 24.0, turned, 1), at(2, turned, 48)})},
+                       {named("", {at(0.0417, turned, 1), at(2, turned, 48)})}, {});
+    CHECK(c.failed == 0);
+    CHECK(!c.frame_rates);
+    // and frames without times count at the rate stated, exactly
+    key k24 = at(1 / 24.0, turned, 1), k30 = at(1 / 30.0, turned, 1);
+    k24.has_time = k30.has_time = false;
+    track t30 = named("", {k30});
+    t30.key_fps = 30;
+    c = compare_tracks({named("", {k24})}, {t30}, {});
+    CHECK(c.failed == 2);
+    CHECK(counted_rate(t30) == 30);
 }
 
 TEST_CASE("tracks are matched by name; translations are checked when expected") {
@@ -109,6 +137,7 @@ TEST_CASE("each key matches the first key a scan of ACTUAL would find") {
             time += s == 0 ? 0.4e-6 : s * 1e-6;
             const quat q = distinct_angles ? exp(vec3{0, 0, 1e-3 * (i + 1)}) : quat{};
             keys.push_back(at(time, q, coin(gen) ? std::optional<double>(frame(gen)) : std::nullopt));
+            keys.back().has_time = !keys.back().frame;  // frames counted at the rate stated, as a scan takes them
         }
         return keys;
     };

@@ -279,7 +279,7 @@ def write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps, interl
 
 
 # ---------------------------------------------------------------- outputs
-def read_output(text, fmt, rep, seq, degrees, order):
+def read_output(text, fmt, rep, seq, degrees, order, stated_fps=None):
     """-> {track: [(frame or None, time or None, matrix, translation or None)]}"""
     unit = (math.pi / 180) if degrees else 1.0
     def rot(get):
@@ -305,19 +305,34 @@ def read_output(text, fmt, rep, seq, degrees, order):
             assert list(m[3]) == [0, 0, 0, 1]
             return m[:3, :3], list(m[:3, 3])
         return m, None
-    def check_settings(h):
-        # What the output states about itself (SPEC: it reads back with no flags).
-        assert h["rep"] == rep, "stated rep %r, written %r" % (h["rep"], rep)
-        assert h["angles"] == ("degrees" if degrees else "radians"), "stated angles %r" % h["angles"]
-        if rep == "euler":
-            assert h["euler"] == seq, "stated Euler sequence %r, written %r" % (h["euler"], seq)
-        if rep == "quat":
-            assert h["quat_order"] == order, "stated quat_order %r, written %r" % (h["quat_order"], order)
+    def check_settings(h, everything):
+        # What the output states about itself (SPEC): a JSON document all its
+        # settings; a CSV or NDJSON file only what keyrot reading it back
+        # with no flags would misread (resample's frames carry their times).
+        angles = "degrees" if degrees else "radians"
+        if everything:
+            assert h["rep"] == rep, "stated rep %r, written %r" % (h["rep"], rep)
+            assert h["angles"] == angles, "stated angles %r" % h["angles"]
+            if rep == "euler":
+                assert h["euler"] == seq, "stated Euler sequence %r, written %r" % (h["euler"], seq)
+            if rep == "quat":
+                assert h["quat_order"] == order, "stated quat_order %r, written %r" % (h["quat_order"], order)
+            return
+        needed = {}
+        if stated_fps is not None:  # frame numbers without times, at a rate other than 24
+            needed["fps"] = stated_fps
+        if not degrees and rep in ("axis-angle", "rotvec", "euler"):
+            needed["angles"] = "radians"
+        if fmt == "ndjson" and rep == "quat" and order != "wxyz":
+            needed["quat_order"] = order
+        assert h == needed, "stated %r, expected %r" % (h, needed)
     result = {}
     if fmt == "csv":
-        first, _, text = text.partition("\n")
-        assert first.startswith("# keyrot {"), "no settings line: %r" % first[:80]
-        check_settings(json.loads(first[len("# keyrot "):]))
+        if text.startswith("# keyrot {"):
+            first, _, text = text.partition("\n")
+            check_settings(json.loads(first[len("# keyrot "):]), False)
+        else:
+            check_settings({}, False)
         rows = list(csv.DictReader(io.StringIO(text)))
         for r in rows:
             def get(name, r=r):
@@ -342,12 +357,14 @@ def read_output(text, fmt, rep, seq, degrees, order):
     objs = []
     if fmt == "ndjson":
         lines = text.splitlines()
-        check_settings(json.loads(lines[0]))
-        for line in lines[1:]:
+        first = json.loads(lines[0]) if lines else {}
+        header = first if "frame" not in first and "time" not in first else None
+        check_settings(header or {}, False)
+        for line in lines[1 if header is not None else 0:]:
             objs.append((json.loads(line).get("track", ""), json.loads(line)))
     else:
         doc = json.loads(text)
-        check_settings(doc)
+        check_settings(doc, True)
         if "tracks" in doc:
             for name, tr in doc["tracks"].items():
                 objs += [(name, o) for o in tr.get("frames", tr.get("keys"))]
@@ -420,17 +437,18 @@ def run_case(keyrot, rng, case):
         args += ["--out-euler", out_seq]
     if not degrees:
         args += ["--radians"]
+    # Frame numbers count at 24 fps unless stated, whatever --fps is: every
+    # third case at 24 leaves it to the default (without drawing on rng).
+    if by_frame and not (key_fps == 24 and case % 3 == 0):
+        args += ["--key-fps", repr(key_fps)]
     if command == "resample":
         args += ["--fps", repr(fps), "--method", method, "--path", path]
-        if by_frame:
-            args += ["--key-fps", repr(key_fps)]
-    elif by_frame:
-        args += ["--key-fps", repr(key_fps)]
     proc = subprocess.run(args, input=text.encode(), capture_output=True)
     desc = f"case {case}: {' '.join(args[1:])}\n--- input ---\n{text[:2000]}"
     if proc.returncode != 0:
         return f"{desc}\nexit {proc.returncode}: {proc.stderr.decode()}"
-    out = read_output(proc.stdout.decode(), out_fmt, out_rep, out_seq, degrees, order)
+    stated_fps = key_fps if command == "convert" and by_frame and key_fps != 24 else None
+    out = read_output(proc.stdout.decode(), out_fmt, out_rep, out_seq, degrees, order, stated_fps)
     names = list(tracks) if n_tracks > 1 else [""]
     if list(out) != names and not (command == "resample" and set(out) <= set(names)):
         return f"{desc}\ntracks {list(out)} != {names}"

@@ -253,6 +253,16 @@ def make_cases(work):
     c.end()
     cases.append((c, "glb"))
 
+    # Two nodes of one name: the second's track is "joint3.2" (no '#' or ',', which CSV readers treat apart).
+    c = Case("twins.glb")
+    c.b.skeleton(20)
+    c.b.json["nodes"][4]["name"] = "joint3"
+    c.begin()
+    c.channel("joint3", 3, "rotation", key_times(rng, 6), random_quats(rng, 6, 0.5))
+    c.channel("joint3.2", 4, "rotation", key_times(rng, 6), random_quats(rng, 6, 0.5))
+    c.end()
+    cases.append((c, "glb"))
+
     # Two animations on a 60-joint skeleton: tracks "Walk/joint3", "Run/joint3".
     c = Case("two.glb")
     c.b.skeleton(60)

@@ -40,7 +40,7 @@ done
 formats=$(keyrot help formats)
 for rep in axis-angle quat rotvec euler matrix matrix4; do
     columns=$(echo "$formats" | sed -n '/^CSV/,/^JSON/p' | awk -v r="$rep" '$1 == r { print $2 }')
-    header=$(keyrot convert homework.json --rep "$rep" --euler ZYX --to csv | sed -n 2p)
+    header=$(keyrot convert homework.json --rep "$rep" --euler ZYX --to csv | sed -n 1p)
     [[ $header == "time,$columns" ]] && echo "ok   CSV columns of $rep: $columns" || fail "CSV $rep: help says '$columns', keyrot writes '$header'"
     fields=$(echo "$formats" | sed -n '/^JSON/,/^NDJSON/p' | awk -v r="$rep" '$1 == r' | sed 's/ or .*//' | grep -oE '"[a-z]+":' | sort -u)
     written=$(keyrot convert homework.json --rep "$rep" --euler ZYX --to json)
@@ -50,7 +50,7 @@ for rep in axis-angle quat rotvec euler matrix matrix4; do
     done
 done
 xyzw=$(echo "$formats" | grep -oE 'xyzw: [a-z,]+' | cut -d' ' -f2)
-[[ $(keyrot convert homework.json --rep quat --quat-order xyzw --to csv | sed -n 2p) == "time,$xyzw" ]] ||
+[[ $(keyrot convert homework.json --rep quat --quat-order xyzw --to csv | sed -n 1p) == "time,$xyzw" ]] ||
     fail "CSV quat in xyzw order: help says $xyzw"
 # Files laid out as the help says read back.
 echo '{"keys": [{"time": 0, "quat": {"w": 1, "x": 0, "y": 0, "z": 0}}]}' >object.json

@@ -127,7 +127,7 @@ std::string dump(const std::string& text) {
         for (const auto& [t, keys] : read_json_keys(text).tracks)
             for (const raw_key& k : keys) {
                 out += fmt::format("{} {} {} {} {} {} {} {} {} {} [{}]", t.name, t.at.path, static_cast<int>(t.settings.angles),
-                                   t.settings.euler ? t.settings.euler->name : "-", t.settings.key_fps, k.at.line, k.at.path,
+                                   t.settings.euler ? t.settings.euler->name : "-", t.settings.frame_rate(), k.at.line, k.at.path,
                                    k.time.value_or(-1), k.frame.value_or(-1), static_cast<int>(k.kind),
                                    fmt::join(k.values, " "));
                 if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
@@ -185,7 +185,7 @@ namespace {
 
 std::string key_line(const std::string& track, const key_settings& s, const raw_key& k) {
     std::string line = fmt::format("{} {} {} {} {} {} {} {} [{}]", track, static_cast<int>(s.angles),
-                                   s.euler ? s.euler->name : "-", s.key_fps, k.at.path, k.time.value_or(-1),
+                                   s.euler ? s.euler->name : "-", s.frame_rate(), k.at.path, k.time.value_or(-1),
                                    k.frame.value_or(-1), static_cast<int>(k.kind), fmt::join(k.values, " "));
     if (k.translation) line += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
     if (k.scale) line += fmt::format(" scale {} {} {}", k.scale->x, k.scale->y, k.scale->z);

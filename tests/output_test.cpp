@@ -80,3 +80,37 @@ TEST_CASE("write_to_stream says why a stream cannot be written") {
     bad.setstate(std::ios::badbit);
     CHECK_THROWS_AS(write_to_stream(bad, "abc"), error);
 }
+
+TEST_CASE("durable_batch: its files are put in place together at finish, or not at all") {
+    const keyrot::test::scratch s;
+    const auto& dir = s.dir;
+    std::ofstream(dir / "f0.csv") << "old\n";
+    // More files than a block of the signal handler's slots holds.
+    constexpr int files = 150;
+    SUBCASE("finished") {
+        durable_batch batch;
+        for (int i = 0; i < files; ++i)
+            write_file_atomically((dir / ("f" + std::to_string(i) + ".csv")).string(), std::to_string(i) + "\n",
+                                  {true, &batch});
+        CHECK(s.read(dir / "f0.csv") == "old\n");  // written, closed, not yet in place
+        CHECK(files_in(dir) == files + 1);
+        batch.finish();
+        CHECK(files_in(dir) == files);
+        CHECK(s.read(dir / "f0.csv") == "0\n");
+        CHECK(s.read(dir / "f149.csv") == "149\n");
+    }
+    SUBCASE("never finished (a usage error stopped the run)") {
+        {
+            durable_batch batch;
+            for (int i = 0; i < files; ++i)
+                write_file_atomically((dir / ("f" + std::to_string(i) + ".csv")).string(), "new\n", {true, &batch});
+        }
+        CHECK(files_in(dir) == 1);
+        CHECK(s.read(dir / "f0.csv") == "old\n");
+    }
+    SUBCASE("without --fsync a batch is not used: each file is in place at once") {
+        durable_batch batch;
+        write_file_atomically((dir / "f0.csv").string(), "new\n", {false, &batch});
+        CHECK(s.read(dir / "f0.csv") == "new\n");
+    }
+}

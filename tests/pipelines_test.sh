@@ -29,20 +29,30 @@ expect_pass() {
 printf 'track,time,qw,qx,qy,qz,tx,ty,tz,sx,sy,sz\nhip,0,1,0,0,0,0,1,0,,,\nhip,0.5,0.5,0.5,0.5,0.5,1,1,0,1,2,3
 hip,1,0,0.6,0,0.8,2,1,0,1,1,1\nknee,0,0.9,0.1,0.3,0.3,,,,0.5,0.5,0.5\nknee,1,0.5,-0.5,0.5,0.5,,,,,,\n' > walk.csv
 "$keyrot" resample walk.csv --fps 10 --rep quat > direct.csv
+# (Euler angles in CSV and NDJSON do not carry their sequence, which has no
+# default: read back without --euler they are refused, naming it.)
 for to in csv json ndjson; do
     for rep in quat axis-angle rotvec euler matrix matrix4; do
+        sequence=""
+        [[ $rep == euler && $to != json ]] && sequence="--euler xyz"
         for unit in "" --radians; do
             # shellcheck disable=SC2086
             expect_pass "read back: $to $rep $unit" 22 -- bash -c \
                 "'$keyrot' resample walk.csv --fps 10 --to $to --rep $rep --out-euler xyz --quat-order xyzw $unit |
-                 '$keyrot' compare direct.csv - --tol 1e-9"
+                 '$keyrot' compare direct.csv - --tol 1e-9 $sequence"
         done
     done
 done
-# and through convert, with no flags on the second command
+for to in csv ndjson; do
+    expect_error "Euler $to read back without --euler" "keyrot: <stdin>:$([[ $to == csv ]] && echo 2 || echo 1): Euler angles need a sequence: expected --euler SEQ or an \"euler\" field" -- \
+        bash -c "'$keyrot' resample walk.csv --fps 10 --to $to --rep euler --out-euler xyz 2>/dev/null | '$keyrot' convert"
+done
+# and through convert, with no flags on the second command but the sequence
 for to in csv json ndjson; do
+    sequence="--euler xyz"
+    [[ $to == json ]] && sequence=""
     expect_pass "convert chain: $to euler xyz radians" 22 -- bash -c \
-        "'$keyrot' resample walk.csv --fps 10 --rep euler --out-euler xyz --radians --to $to | '$keyrot' convert |
+        "'$keyrot' resample walk.csv --fps 10 --rep euler --out-euler xyz --radians --to $to | '$keyrot' convert $sequence |
          '$keyrot' compare direct.csv - --tol 1e-9"
 done
 
@@ -52,8 +62,11 @@ printf 'track,time,qw,qx,qy,qz\nknee,0,1,0,0,0\nknee,1,0,1,0,0\n' > knee.csv
 expect "cat of two NDJSON outputs" 0 "hip 3
 knee 3" -- bash -c "cat <('$keyrot' resample hip.csv --fps 2 --to ndjson) <('$keyrot' resample knee.csv --fps 2 --to ndjson) |
     '$keyrot' info --to json | /usr/bin/env python3 -c 'import json,sys; [print(t[\"name\"], t[\"keys\"]) for t in json.load(sys.stdin)[\"tracks\"]]'"
-expect_error "cat of NDJSON outputs at two rates" "keyrot: <stdin>:5: a header line with other settings than the first: expected the lines of one document (keyrot outputs made with other settings cannot be joined)" -- \
-    bash -c "cat <('$keyrot' resample hip.csv --fps 2 --to ndjson) <('$keyrot' resample knee.csv --fps 3 --to ndjson) | '$keyrot' info"
+expect "cat of NDJSON outputs at two rates" 0 "hip 3
+knee 4" -- bash -c "cat <('$keyrot' resample hip.csv --fps 2 --to ndjson) <('$keyrot' resample knee.csv --fps 3 --to ndjson) |
+    '$keyrot' info --to json | /usr/bin/env python3 -c 'import json,sys; [print(t[\"name\"], t[\"keys\"]) for t in json.load(sys.stdin)[\"tracks\"]]'"
+expect_error "cat of NDJSON outputs stating two rates" "keyrot: <stdin>:5: a header line with other settings than the first: expected the lines of one document (keyrot outputs made with other settings cannot be joined)" -- \
+    bash -c "cat <('$keyrot' resample hip.csv --fps 2 --to ndjson --settings-line always) <('$keyrot' resample knee.csv --fps 3 --to ndjson --settings-line always) | '$keyrot' info"
 
 # ---- the key rate travels with frame-numbered keys
 printf 'frame,qw,qx,qy,qz\n0,1,0,0,0\n15,0.9238795325112867,0,0,0.3826834323650898\n30,0.7071067811865476,0,0,0.7071067811865476\n' > anim.csv
@@ -71,12 +84,45 @@ expect "convert of frames at two rates" 2 "" -- bash -c \
     "printf '%s' '{\"tracks\": {\"a\": {\"fps\": 30, \"keys\": [{\"frame\": 0, \"quat\": [1,0,0,0]}]}, \"b\": {\"fps\": 24, \"keys\": [{\"frame\": 0, \"quat\": [1,0,0,0]}]}}}' |
      '$keyrot' convert --from json"
 
+# ---- frame numbers count at 24 fps unless stated, whatever --fps is: resampling keeps times
+head_turn=$data/head_turn.json  # frames 0 to 48: 0 s to 2 s
+rate_warning="keyrot: warning: $head_turn: frame numbers count at 24 fps (the default, whatever --fps is): --key-fps RATE reads them at another"
+for fps in 30 120 5; do
+    expect "head_turn at --fps $fps ends at 2 s" 0 "$((2 * fps)),2" -- bash -c \
+        "'$keyrot' resample '$head_turn' --fps $fps --to csv | tail -n 1 | cut -d, -f1,2"
+    expect "head_turn at --fps $fps: one warning naming --key-fps" 0 "$rate_warning" -- bash -c \
+        "'$keyrot' resample '$head_turn' --fps $fps 2>&1 >/dev/null"
+done
+expect "no warning at --fps 24, with --key-fps, or for times" 0 "" -- bash -c \
+    "{ '$keyrot' resample '$head_turn' && '$keyrot' resample '$head_turn' --fps 30 --key-fps 24 &&
+       '$keyrot' resample '$data/walk.csv' --fps 30 && '$keyrot' convert '$head_turn'; } 2>&1 >/dev/null"
+mkdir -p batch_in && cp "$head_turn" "$data/walk.csv" batch_in/
+expect "a batch keeps head_turn's 2 s" 0 "keyrot: warning: batch_in/head_turn.json: frame numbers count at 24 fps (the default, whatever --fps is): --key-fps RATE reads them at another
+[60,2]" -- bash -c "'$keyrot' resample batch_in/* --fps 30 --output-dir out30 2>&1 &&
+    jq -c '.frames[-1] | [.frame, .time]' out30/head_turn.json"
+# every command reads frame 48 as 2 s
+expect "info reads frame 48 as 2 s" 0 "track: 5 keys, 0 s to 2 s, given as euler" -- bash -c \
+    "'$keyrot' info '$head_turn' | sed -n 2p"
+expect "convert keeps frame 48, and states no rate it assumed" 0 '{"frame": 48, "axis": [1, 0, 0], "angle": 0}]}
+0' -- bash -c \
+    "'$keyrot' convert '$head_turn' --to json | tail -n 1 && '$keyrot' convert '$head_turn' --to json | grep -c fps; true"
+expect "reduce keeps frame 48" 0 "48" -- bash -c "'$keyrot' reduce '$head_turn' --to csv 2>/dev/null | tail -n 1 | cut -d, -f1"
+printf 'time,e1,e2,e3\n0,0,0,0\n0.5,35,-5,2\n0.8333333333333334,60,-10,4\n1.5,45,8,0\n2,0,0,0\n' > head_turn_times.csv
+expect_pass "compare: the frames at the times 24 fps gives them" 5 -- \
+    "$keyrot" compare "$head_turn" head_turn_times.csv --euler ZYX --tol 1e-9
+# a rate assumed upstream never overrides one typed downstream
+printf 'frame,qw,qx,qy,qz\n0,1,0,0,0\n30,0.7071067811865476,0,0,0.7071067811865476\n' > frames30.csv
+for to in csv json ndjson; do
+    expect "convert --to $to | resample --key-fps 30: 1 s, no warning" 0 "24,1,0,0,1,90" -- bash -c \
+        "'$keyrot' convert frames30.csv --to $to | '$keyrot' resample - --key-fps 30 --to csv 2>&1 | tail -n 1"
+done
+
 # ---- slerp's table reads back
 expect_pass "slerp into compare" 5 -- bash -c \
     "'$keyrot' slerp 1,0,0,0 0.7071067811865476,0,0,0.7071067811865476 --steps 4 > key.csv &&
      '$keyrot' compare key.csv <('$keyrot' slerp 0,0,0,1 0,0,0.7071067811865476,0.7071067811865476 --quat-order xyzw --steps 4 --to json)"
 expect "slerp into convert" 0 "0.5,0,0,1,45" -- bash -c \
-    "'$keyrot' slerp 1,0,0,0 0.7071067811865476,0,0,0.7071067811865476 --steps 2 | '$keyrot' convert --precision 9 | sed -n 4p"
+    "'$keyrot' slerp 1,0,0,0 0.7071067811865476,0,0,0.7071067811865476 --steps 2 | '$keyrot' convert --precision 9 | sed -n 3p"
 
 # ---- compare at two frame rates: by time
 printf '{"keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "axis": [0, 0, 1], "angle": 90}]}' > homework.json
@@ -97,16 +143,16 @@ keyrot: b.json: track 'Hips' only in ACTUAL" -- bash -c \
 
 # ---- --precision rounds values, not times; at a key's time, the key
 expect "precision keeps times" 0 "3,0.375,0.9569,0,0,0.2903" -- bash -c \
-    "'$keyrot' resample homework.json --fps 8 --to csv --rep quat --precision 4 | sed -n 6p"
+    "'$keyrot' resample homework.json --fps 8 --to csv --rep quat --precision 4 | sed -n 5p"
 printf 'time,ax,ay,az,angle\n0,0,0,1,0\n1,0,0,1,0\n1.000000000001,0,0,1,90\n2,0,0,1,90\n' > close.csv
 expect "keys 1e-12 s apart: frame 1 is the key at 1 s" 0 "1,1,1,0,0,0" -- bash -c \
-    "'$keyrot' resample close.csv --fps 1 | sed -n 4p"
+    "'$keyrot' resample close.csv --fps 1 | sed -n 3p"
 printf 'time,ax,ay,az,angle\n0,0,0,1,0\n1e-12,0,0,1,90\n' > close_start.csv
 expect "keys at 0 and 1e-12 s: frame 0 is the key at 0" 0 "0,0,1,0,0,0" -- bash -c \
-    "'$keyrot' resample close_start.csv --fps 1 | sed -n 3p"
+    "'$keyrot' resample close_start.csv --fps 1 | sed -n 2p"
 printf 'time,qw,qx,qy,qz,tx,ty,tz\n0,1,0,0,0,0,0,0\n0.999999999999,1,0,0,0,5,5,5\n1,1,0,0,0,1,1,1\n' > close_translation.csv
 expect "translation at a key's exact time" 0 "1,1,1,0,0,0,1,1,1" -- bash -c \
-    "'$keyrot' resample close_translation.csv --fps 1 | sed -n 4p"
+    "'$keyrot' resample close_translation.csv --fps 1 | sed -n 3p"
 
 # ---- inputs that cannot be read twice are read as standard input is
 "$keyrot" resample walk.csv --fps 10 > walk10.csv

@@ -155,6 +155,40 @@ printf 'track,time,qw,qx,qy,qz\n"#hash",0,1,0,0,0\n" lead",0,1,0,0,0\n"a,b",0,1,
 expect "track names through CSV twice" 0 '{"track": "#hash", "time": 0, "quat": [1, 0, 0, 0]}
 {"track": " lead", "time": 0, "quat": [1, 0, 0, 0]}
 {"track": "a,b", "time": 0, "quat": [1, 0, 0, 0]}' -- bash -c \
-    "'$keyrot' convert names.csv | '$keyrot' convert | '$keyrot' convert --to ndjson --rep quat | tail -n +2"
+    "'$keyrot' convert names.csv | '$keyrot' convert | '$keyrot' convert --to ndjson --rep quat"
+
+# ---- durability: renamed into place without waiting for the disk by default;
+# --fsync waits (file, then directory), and a batch waits once, not once a file
+mkdir -p many_in && for i in $(seq 1 20); do cp walk.csv "many_in/w$i.csv"; done
+if command -v strace >/dev/null && strace -f -qq -o /dev/null true 2>/dev/null; then
+    # syncs COMMAND...: the sync calls it made, as "fsync=N syncfs=N sync_file_range=N"
+    syncs() {
+        strace -f -qq -e trace=fsync,fdatasync,syncfs,sync_file_range -o trace.txt "$@" >/dev/null 2>&1
+        local call counts=()
+        for call in fsync syncfs sync_file_range; do
+            counts+=("$call=$(grep -cE "^[0-9]+ +$call\(" trace.txt)")
+        done
+        echo "${counts[*]}"
+    }
+    expect "-o: no sync by default" 0 "fsync=0 syncfs=0 sync_file_range=0" -- syncs "$keyrot" resample walk.csv -o plain.csv
+    expect "a batch: no sync by default" 0 "fsync=0 syncfs=0 sync_file_range=0" -- \
+        syncs "$keyrot" resample many_in/*.csv --output-dir many_plain
+    expect "-o --fsync: the file and its directory" 0 "fsync=2 syncfs=0 sync_file_range=1" -- \
+        syncs "$keyrot" resample walk.csv -o durable.csv --fsync
+    expect "info and compare -o --fsync" 0 "fsync=2 syncfs=0 sync_file_range=1
+fsync=2 syncfs=0 sync_file_range=1" -- bash -c \
+        "$(declare -f syncs); syncs '$keyrot' info walk.csv -o info.txt --fsync && syncs '$keyrot' compare walk.csv walk.csv -o c.txt --fsync"
+    expect "a batch of 20 with --fsync: one syncfs, one directory" 0 "fsync=1 syncfs=1 sync_file_range=20" -- \
+        syncs "$keyrot" resample many_in/*.csv --output-dir many_durable --fsync --jobs 2
+else
+    echo "strace cannot trace here: the sync calls are not counted"
+fi
+"$keyrot" resample many_in/*.csv --output-dir many_plain
+"$keyrot" resample many_in/*.csv --output-dir many_durable --fsync
+expect "--fsync writes the same files, and leaves no temporary file" 0 "" -- bash -c \
+    "diff -r many_plain many_durable && find many_durable -name '.*keyrot-*'"
+cp walk.csv many_in/bad.csv && echo 'x,1,0,0,0' >> many_in/bad.csv
+expect "a batch with --fsync and a bad file: the others put in place, status 2" 0 "2 20 0" -- bash -c \
+    "'$keyrot' resample many_in/*.csv --output-dir many_mixed --fsync 2>/dev/null; echo \$? \$(ls many_mixed | wc -l) \$(find many_mixed -name '.*keyrot-*' | wc -l)"
 
 summary

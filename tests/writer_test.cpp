@@ -27,7 +27,6 @@ TEST_CASE("writers: CSV, JSON and NDJSON tables") {
     w.precision = 4;
     // --precision rounds the values, not the times
     CHECK(write(format::csv, info, w, rows) ==
-          "# keyrot {\"fps\": 24, \"method\": \"slerp\", \"rep\": \"quat\", \"angles\": \"degrees\", \"quat_order\": \"wxyz\"}\n"
           "frame,time,qw,qx,qy,qz,tx,ty,tz\n0,0,1,0,0,0,1,2,3\n12,0.5,0.7071,0,0,0.7071,0,0,-1\n");
     CHECK(write(format::json, info, w, rows) ==
           "{\"fps\": 24, \"method\": \"slerp\", \"rep\": \"quat\", \"angles\": \"degrees\", \"quat_order\": \"wxyz\", "
@@ -37,10 +36,57 @@ TEST_CASE("writers: CSV, JSON and NDJSON tables") {
     info.named = true;
     w.representation = rep::axis_angle;
     CHECK(write(format::ndjson, info, w, rows, "hip") ==
-          "{\"fps\": 24, \"method\": \"slerp\", \"rep\": \"axis-angle\", \"angles\": \"degrees\"}\n"
           "{\"track\": \"hip\", \"frame\": 0, \"time\": 0, \"axis\": [1, 0, 0], \"angle\": 0, \"translation\": [1, 2, 3]}\n"
           "{\"track\": \"hip\", \"frame\": 12, \"time\": 0.5, \"axis\": [0, 0, 1], \"angle\": 90, \"translation\": [0, 0, -1]}\n");
     CHECK(write(format::csv, info, w, rows, "a,b").find("\"a,b\",0,0,1,0,0,0,1,2,3\n") != std::string::npos);
+}
+
+TEST_CASE("a settings line only where keyrot would otherwise misread the rows") {
+    const std::vector<sample> rows = {{0.5, 12.0, quat{}, std::nullopt}};
+    table_info frames;  // resample's: frames with their times
+    frames.fps = 30;
+    frames.method = "slerp";
+    table_info keys = frames;  // convert's: frame numbers alone
+    keys.times = time_columns::as_given;
+    keys.all_frames = true;
+    keys.any_time = false;
+    keys.counted = true;
+    write_options w;
+    w.representation = rep::rotvec;
+    const std::vector<sample> counted_rows = {{0.5, 12.0, quat{}, std::nullopt, std::nullopt, false}};
+    const auto first_line = [&](format f, const table_info& info) {
+        const std::string text = write(f, info, w, info.counted ? counted_rows : rows);
+        return text.substr(0, text.find('\n'));
+    };
+    for (format f : {format::csv, format::ndjson}) {
+        CAPTURE(to_string(f));
+        const std::string plain = f == format::csv ? "frame,time,rx,ry,rz" : "{\"frame\": 12, \"time\": 0.5, \"rotvec\": [0, 0, 0]}";
+        const std::string line = f == format::csv ? "# keyrot {{{}}}" : "{{{}}}";
+        w.angles = angle_unit::degrees;
+        CHECK(first_line(f, frames) == plain);
+        CHECK(first_line(f, keys) == fmt::format(fmt::runtime(line), "\"fps\": 30"));
+        w.angles = angle_unit::radians;
+        CHECK(first_line(f, frames) == fmt::format(fmt::runtime(line), "\"angles\": \"radians\""));
+        w.states = settings_line::always;
+        CHECK(first_line(f, frames) == fmt::format(fmt::runtime(line), "\"fps\": 30, \"method\": \"slerp\", \"rep\": \"rotvec\", \"angles\": \"radians\""));
+        w.states = settings_line::never;
+        CHECK(first_line(f, keys) == (f == format::csv ? "frame,rx,ry,rz" : "{\"frame\": 12, \"rotvec\": [0, 0, 0]}"));
+        w.states = settings_line::needed;
+    }
+    // quaternion arrays in xyzw order: NDJSON says so, CSV names its columns
+    w.angles = angle_unit::radians;  // (no angles in a quaternion)
+    w.representation = rep::quat;
+    w.order = quat_order::xyzw;
+    CHECK(first_line(format::csv, frames) == "frame,time,qx,qy,qz,qw");
+    CHECK(first_line(format::ndjson, frames) == "{\"quat_order\": \"xyzw\"}");
+    // an Euler sequence is never needed: read without one, it is refused
+    w.representation = rep::euler;
+    w.euler = parse_euler_seq("ZYX");
+    w.angles = angle_unit::degrees;
+    CHECK(first_line(format::ndjson, frames).starts_with("{\"frame\": 12"));
+    // a JSON document states everything, as fields
+    CHECK(first_line(format::json, frames) ==
+          "{\"fps\": 30, \"method\": \"slerp\", \"rep\": \"euler\", \"angles\": \"degrees\", \"euler\": \"ZYX\", \"frames\": [");
 }
 
 TEST_CASE("keyrot reads what it writes, in every format and representation") {

@@ -37,11 +37,18 @@ struct comparison {
     std::optional<std::pair<double, double>> frame_rates;
 };
 
+/// The rate a track's frame numbers count at: for frames that carry their
+/// time as well (keyrot's own resampled frames, which state no rate), the
+/// rate those imply; otherwise the rate stated, or default_key_fps.
+double counted_rate(const track& t);
+
 /// Rows are matched by track name and frame when both keys have a frame and
-/// both tracks count frames at the same rate (key_fps), else by track and
-/// time (|dt| <= tol::match_time, or either track's time rounding as
-/// stored, track_interpolation::time_rounding, where that is more). A track
-/// and its negation (every q as -q) compare equal: every angle_deg 0, failed 0.
+/// both tracks' frame numbers name the same moments (the same stated rate,
+/// or, where counted_rate is implied by times, grids that stay within half
+/// a frame of each other), else by track and time (|dt| <= tol::match_time,
+/// or either track's time rounding as stored,
+/// track_interpolation::time_rounding, where that is more). A track and its
+/// negation (every q as -q) compare equal: every angle_deg 0, failed 0.
 comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual,
                           const tolerances& tol);
 

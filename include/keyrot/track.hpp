@@ -5,6 +5,7 @@
 // make_key is the one place where raw values become rotations, so every
 // input format is validated the same way.
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -73,13 +74,20 @@ struct raw_key {
     }
 };
 
+/// The rate frame numbers count at where neither the file nor the user
+/// states one, whatever rate the output is resampled at.
+inline constexpr double default_key_fps = 24;
+
 /// Settings that describe a document (flags, overridden by its own fields).
 struct key_settings {
     angle_unit angles = angle_unit::degrees;
     std::optional<euler_seq> euler;
-    double key_fps = 24;
+    /// The rate frame numbers count at, where the file or the user states
+    /// one; none: default_key_fps, assumed (and never written as stated).
+    std::optional<double> key_fps;
     bool strict = false;
     std::optional<track_interpolation> interpolation = std::nullopt;  ///< a glTF track's own
+    double frame_rate() const { return key_fps.value_or(default_key_fps); }
 };
 
 /// What a reader knows of a track before its keys.
@@ -102,15 +110,18 @@ struct key {
     bool renormalised = false;  ///< input norm differed from 1 by > tol::unit_norm
     /// A quaternion key whose normalisation changed its bits: as given (reduce writes its keys back so).
     std::optional<quat> given_quat = std::nullopt;
-    std::optional<spline_key> spline;  ///< glTF CUBICSPLINE keys only
+    /// glTF CUBICSPLINE keys only (held apart: keys are copied often, and most have none).
+    std::shared_ptr<const spline_key> spline;
 };
 
 struct track {
     std::string name;
     std::optional<euler_seq> euler;  ///< the sequence in force for this track
     std::vector<key> keys;
-    double key_fps = 24;  ///< the rate its keys' frame numbers count at
+    std::optional<double> key_fps;  ///< as key_settings::key_fps
     std::optional<track_interpolation> interpolation = std::nullopt;  ///< the file's own, where it states one
+    /// The rate its keys' frame numbers count at.
+    double frame_rate() const { return key_fps.value_or(default_key_fps); }
 };
 
 /// The optional channels beside the rotation that some key of a track

@@ -8,6 +8,7 @@
 
 #include "keyrot/convert.hpp"
 #include "io/format.hpp"
+#include "io/layout.hpp"
 #include "keyrot/interpolate.hpp"
 #include "keyrot/resample.hpp"
 
@@ -24,13 +25,16 @@ struct options {
     rep representation = rep::axis_angle;
     std::optional<euler_seq> euler, out_euler;
     quat_order order = quat_order::wxyz;
+    bool order_given = false;  ///< --quat-order was typed (a file stating another order then warns)
     bool radians = false;
     std::optional<angle_unit> out_angles;  ///< --out-degrees / --out-radians
     std::optional<int> precision;
     bool euler_continuous = false;  ///< --euler-continuous
+    settings_line settings_when = settings_line::needed;  ///< --settings-line
     bool strict = false;
+    bool fsync = false;  ///< --fsync: outputs durable against a power cut
     double fps = 24;
-    std::optional<double> key_fps;  ///< defaults to fps
+    std::optional<double> key_fps;  ///< none: the file's, else default_key_fps (not fps)
     std::optional<method> how;  ///< --method; by default a glTF sampler's own, else slerp
     path way = path::shortest;
     double max_frames = resample_options{}.max_frames;  ///< per track (--max-frames)

@@ -75,7 +75,7 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
     const comparison c = compare_tracks(expected.tracks, actual.tracks, tol);
 
     if (c.frame_rates)
-        print_error(err, fmt::format("{} counts frames at {} fps, {} at {} fps: rows are matched by time",
+        print_error(err, fmt::format("{} counts frames at {:.6g} fps, {} at {:.6g} fps: rows are matched by time",
                                      expected.source, c.frame_rates->first, actual.source, c.frame_rates->second));
     // A track missing from either file is said once, not row by row.
     constexpr std::size_t max_reasons = 10;

@@ -15,7 +15,7 @@ std::optional<std::string> output_path(const options& o) {
 }
 
 key_settings settings_of(const options& o) {
-    return {o.radians ? angle_unit::radians : angle_unit::degrees, o.euler, o.key_fps.value_or(o.fps), o.strict};
+    return {o.radians ? angle_unit::radians : angle_unit::degrees, o.euler, o.key_fps, o.strict};
 }
 
 read_options reading(const options& o, const std::string& source) {
@@ -24,7 +24,7 @@ read_options reading(const options& o, const std::string& source) {
     ro.settings = settings_of(o);
     ro.order = o.order;
     ro.given.angles = o.radians;
-    ro.given.key_fps = o.key_fps.has_value();
+    ro.given.order = o.order_given;
     ro.max_bytes = o.max_bytes;
     ro.animation = o.animation;
     return ro;
@@ -37,6 +37,8 @@ write_options writing(const options& o, const std::optional<euler_seq>& input_eu
     w.order = o.order;
     w.precision = o.precision;
     w.euler_continuous = o.euler_continuous;
+    w.states = o.settings_when;
+    w.commit.fsync = o.fsync;
     if (w.representation == rep::euler) {
         w.euler = o.out_euler ? o.out_euler : input_euler;
         if (!w.euler) throw usage_error("--rep euler needs an Euler sequence: expected --out-euler SEQ or --euler SEQ");
@@ -67,7 +69,7 @@ document read_input(const options& o, const input_source& src, warnings& warn) {
 }
 
 void emit(const options& o, const std::string& text, std::ostream& out) {
-    if (const auto file = output_path(o)) write_file_atomically(*file, text);
+    if (const auto file = output_path(o)) write_file_atomically(*file, text, {o.fsync});
     else write_to_stream(out, text);
 }
 

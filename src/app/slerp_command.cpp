@@ -66,7 +66,8 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     // Each operand is its own source for messages: "keyrot: Q1: quaternion is zero: ...".
     warnings warn0(err, "Q0"), warn1(err, "Q1");
     const track t{"", o.euler, {make_key(operand("Q0", o.q0, o, 0), settings_of(o), warn0),
-                                make_key(operand("Q1", o.q1, o, 1), settings_of(o), warn1)}};
+                                make_key(operand("Q1", o.q1, o, 1), settings_of(o), warn1)},
+                    std::nullopt};
     const rotation_curve curve(t, how, o.way);
     table_info info;
     info.times = time_columns::time_only;

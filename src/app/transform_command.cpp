@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <map>
@@ -40,7 +41,7 @@ struct document_facts {
         key first, last;
         channels carried;
         std::optional<euler_seq> euler;
-        double key_fps = 24;
+        std::optional<double> key_fps;  // as stated: none, default_key_fps assumed
         std::size_t keys = 0;
         std::optional<track_interpolation> interpolation;  // the file's own
     };
@@ -50,15 +51,17 @@ struct document_facts {
     bool any_time = false;   // some key has a time
     bool frames = false;     // some key has both: keyrot's own frames
     bool any_frame = false;  // some key has a frame
+    bool counted = false;    // some key is timed by its frame number alone
 
     /// Key `k` of track `track`, whose settings are `s`.
-    void add(const std::string& track, const key_settings& s, key k) {
+    void add(const std::string& track, const key_settings& s, key&& k) {
         all_frames = all_frames && k.frame.has_value();
         any_time = any_time || k.has_time;
         frames = frames || (k.frame && k.has_time);
         if (tracks.empty() || tracks.back().name != track)
             tracks.push_back({track, k, k, {}, s.euler, s.key_fps, 0, s.interpolation});
         any_frame = any_frame || k.frame.has_value();
+        counted = counted || (k.frame && !k.has_time);
         ++tracks.back().keys;
         tracks.back().carried |= channels_of(k);
         tracks.back().last = std::move(k);
@@ -80,7 +83,7 @@ document_facts facts_of(const document& doc) {
         s.euler = t.euler;
         s.key_fps = t.key_fps;
         s.interpolation = t.interpolation;
-        for (const key& k : t.keys) d.add(t.name, s, k);
+        for (const key& k : t.keys) d.add(t.name, s, key(k));
     }
     return d;
 }
@@ -98,8 +101,8 @@ public:
     virtual std::size_t row_count(const key& first, const key& last, std::size_t keys) const = 0;
     /// What the writer is told before the first row.
     virtual table_info table(const document_facts& d) const = 0;
-    /// Checks the whole input before anything is written.
-    virtual void check(const document_facts& d, const std::string& source) const = 0;
+    /// Checks the whole input before anything is written; warns of what it assumed.
+    virtual void check(const document_facts& d, warnings& warn) const = 0;
     /// In one pass: checks key `k` of track `name`, whose first key is `first`, before its rows.
     virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
     /// How a glTF file is to interpolate the rows of a track whose file states `own`.
@@ -136,15 +139,27 @@ public:
             info.method = to_string(first);
         return info;
     }
-    /// The frame grid of every track is within bounds.
-    void check(const document_facts& d, const std::string& source) const override {
+    /// The frame grid of every track is within bounds. Frame numbers
+    /// count at 24 fps unless stated, whatever --fps is: said where that
+    /// could surprise.
+    void check(const document_facts& d, warnings& warn) const override {
         for (const auto& t : d.tracks) {
             check_method(of(t.interpolation).how, t.euler);
-            check_frame_range(t.first, t.last, t.name, of(t.interpolation), source);
+            check_frame_range(t.first, t.last, t.name, of(t.interpolation), warn.source());
         }
+        const bool assumed = std::any_of(d.tracks.begin(), d.tracks.end(), [](const auto& t) { return !t.key_fps; });
+        if (d.counted && assumed && opts_.fps != default_key_fps)
+            warn.once("key rate", fmt::format("frame numbers count at {} fps (the default, whatever --fps is): "
+                                              "--key-fps RATE reads them at another",
+                                              default_key_fps));
     }
     /// Before the key's frames: never hours of output.
     void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const override {
+        // Far from both bounds, as nearly every key is, the frames need not be
+        // worked out: a frame or two of margin covers the grid's tolerance.
+        // (The first key was checked as a key of its own.)
+        const double frames = (k.time - first.time) * opts_.fps;
+        if (std::fabs(k.time * opts_.fps) < 0x1p52 && frames + 2 < opts_.max_frames) return;
         check_frame_range(first, k, name, opts_, source);
     }
     /// Frames are LINEAR (dense enough for any method), or STEP where they are held.
@@ -188,18 +203,21 @@ public:
         info.times = time_columns::as_given;
         info.all_frames = d.all_frames;
         info.any_time = d.any_time;
+        info.counted = d.counted;
         info.rows_name = d.frames ? "frames" : "keys";
+        // The rate frames count at, where the input states it (an assumed one is not written as if stated).
         if (d.any_frame) info.fps = d.tracks.front().key_fps;
         return info;
     }
     /// Frame numbers at one rate, the one the output states.
-    void check(const document_facts& d, const std::string& source) const override {
+    void check(const document_facts& d, warnings& warn) const override {
         if (!d.any_frame) return;
+        const auto rate = [](const auto& t) { return t.key_fps.value_or(default_key_fps); };
         for (const auto& t : d.tracks)
-            if (t.key_fps != d.tracks.front().key_fps)
-                throw input_error(source, fmt::format("tracks '{}' and '{}' count frames at {} and {} fps: expected "
-                                                      "one rate in a file that convert writes (resample writes times)",
-                                                      d.tracks.front().name, t.name, d.tracks.front().key_fps, t.key_fps));
+            if (rate(t) != rate(d.tracks.front()))
+                throw input_error(warn.source(), fmt::format("tracks '{}' and '{}' count frames at {} and {} fps: expected "
+                                                             "one rate in a file that convert writes (resample writes times)",
+                                                             d.tracks.front().name, t.name, rate(d.tracks.front()), rate(t)));
     }
     void check_key(const key&, const key&, const std::string&, const std::string&) const override {}
     /// The keys as the file interpolates them (LINEAR for a file that does not say).
@@ -228,16 +246,17 @@ public:
     std::unique_ptr<row_source> another() const override {
         return std::make_unique<reduced_rows>(opts_, method_given_, report_json_, source_, gltf_);
     }
-    void check(const document_facts& d, const std::string& source) const override {
-        key_rows::check(d, source);
+    void check(const document_facts& d, warnings& warn) const override {
+        key_rows::check(d, warn);
         for (const auto& t : d.tracks) {
             const reduce_options r = of(t.interpolation);
             check_method(r.how, t.euler);
             if (r.how == method::cubicspline || r.translation_how == method::cubicspline ||
                 r.scale_how == method::cubicspline)
-                throw input_error(source, fmt::format("track '{}' is CUBICSPLINE: expected LINEAR or STEP keys, which "
-                                                      "reduce keeps as they are (resample it first, or give --method)",
-                                                      t.name));
+                throw input_error(warn.source(),
+                                  fmt::format("track '{}' is CUBICSPLINE: expected LINEAR or STEP keys, which reduce "
+                                              "keeps as they are (resample it first, or give --method)",
+                                              t.name));
             if (gltf_ && r.how != method::slerp && r.how != method::step)
                 throw usage_error(fmt::format("--method {}: a glTF file plays its keys as slerp (LINEAR) or step "
                                               "(STEP): expected one of them, or another output format",
@@ -317,12 +336,14 @@ struct transform_plan {
     std::unique_ptr<row_source> rows;
     format in = format::csv, out = format::csv;
     std::optional<std::string> target;  // the output file; none for standard output
+    durable_batch* batch = nullptr;     // --fsync in a batch: what puts the output file in place
 };
 
 /// How the plan's output is written, for an input of facts `d`: a glTF
 /// output of a glTF input rewrites that file.
 write_options writing_for(const transform_plan& p, const input_source& src, const document_facts& d, warnings& warn) {
     write_options w = writing(p.flags, d.tracks.front().euler);
+    w.commit.batch = p.batch;
     if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = read_gltf_source(*src.open(), p.in, p.reading, warn);
     // A glTF output of a BVH input makes its hierarchy the nodes.
     if (is_gltf(p.out) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);
@@ -452,7 +473,7 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
         const auto table = open_table(p.out, p.target, out, p.rows->table(guess), writing_for(p, src, guess, attempt), attempt);
         const std::optional<document_facts> seen = stream_rows(p, src, nullptr, *table, attempt);
         if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
-        p.rows->check(*seen, src.source());
+        p.rows->check(*seen, attempt);
         for (const auto& t : seen->tracks)
             if (t.carried != channels_of(t.first)) return false;
         table->finish();
@@ -479,17 +500,17 @@ void transform_frames(const transform_plan& p, const input_source& src, std::ost
     d.named = true;
     while (first.size() < joints && reader->next(name, raw)) {
         first.push_back(make_key(raw, reader->settings(), warn));
-        d.add(name, reader->settings(), first.back());
+        d.add(name, reader->settings(), key(first.back()));
     }
     for (auto& t : d.tracks) {  // the last frame's keys, as far as facts go
         t.last.frame = static_cast<double>(source->frames - 1);
-        t.last.time = *t.last.frame / t.key_fps;
+        t.last.time = *t.last.frame / t.key_fps.value_or(default_key_fps);
         t.keys = source->frames;
     }
-    p.rows->check(d, src.source());
+    p.rows->check(d, warn);
     const table_info info = p.rows->table(d);
     bvh_output file(p.target, out, source, p.rows->row_count(d.tracks[0].first, d.tracks[0].last, source->frames),
-                    info.fps ? 1 / *info.fps : source->frame_time, writing(p.flags, d.tracks[0].euler));
+                    info.fps ? 1 / *info.fps : source->frame_time, writing_for(p, src, d, warn));
     std::vector<std::unique_ptr<row_source>> rows;
     for (std::size_t j = 0; j < joints; ++j) {
         rows.push_back(p.rows->another());
@@ -522,7 +543,7 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
         whole = read_document(src, p.in, p.reading, warn, json_reading::whole);
         d = facts_of(*whole);
     }
-    p.rows->check(d, src.source());
+    p.rows->check(d, warn);
     const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing_for(p, src, d, warn), warn);
     if (whole) whole_rows(p, *whole, d, *table);
     else if (!stream_rows(p, src, &d, *table, warn))  // pass 1 took it: the document is not what it was
@@ -575,8 +596,8 @@ void check_output_names(const options& o, const std::vector<std::string>& inputs
 
 /// What the options make of input `name`: how it is read, its row source,
 /// the formats, where its output goes.
-transform_plan plan_for(const options& o, const std::string& name, const input_source& src) {
-    transform_plan p{o, reading(o, src.source()), nullptr, src.detect(o.from), format::csv, std::nullopt};
+transform_plan plan_for(const options& o, const std::string& name, const input_source& src, durable_batch* batch) {
+    transform_plan p{o, reading(o, src.source()), nullptr, src.detect(o.from), format::csv, std::nullopt, batch};
     p.out = o.to.value_or(p.in);
     if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
     else if ((p.target = output_path(o)) && !o.to) p.out = format_of_path(*p.target).value_or(p.in);
@@ -594,13 +615,15 @@ transform_plan plan_for(const options& o, const std::string& name, const input_s
     return p;
 }
 
-/// resample, convert or reduce one input; errors and warnings to `err`. Returns the status.
-int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err) {
+/// resample, convert or reduce one input; errors and warnings to `err`.
+/// With `batch`, its output file is put in place by the batch. Returns the status.
+int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err,
+                  durable_batch* batch = nullptr) {
     try {
         if (is_standard_stream(name) && o.output_dir)
             throw usage_error("standard input ('-') cannot be used with --output-dir");
         const input_source src(name, in);
-        transform(plan_for(o, name, src), src, out, err);
+        transform(plan_for(o, name, src, batch), src, out, err);
         return 0;
     } catch (const usage_error&) {
         throw;
@@ -615,7 +638,9 @@ int transform_one(const options& o, const std::string& name, std::istream& in, s
 
 /// Several files into --output-dir, --jobs at a time. Each file's messages
 /// are kept and printed in input order, so the output does not depend on
-/// which job finished first.
+/// which job finished first. With --fsync, the files are made durable
+/// together at the end (durable_batch): the disk is waited for once, not
+/// once a file.
 int transform_batch(const options& o, const std::vector<std::string>& inputs, std::istream& in, std::ostream& out,
                     std::ostream& err) {
     std::vector<std::string> messages(inputs.size()), reports(inputs.size());  // reduce --report json
@@ -623,11 +648,13 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
     std::exception_ptr stop;  // a bad flag (or no memory left) stops everything, as for one file
     std::atomic<std::size_t> next{0}, done{0};
     std::mutex progress_mutex;
+    std::optional<durable_batch> batch;
+    if (o.fsync) batch.emplace();
     const auto work = [&] {
         for (std::size_t i; (i = next++) < inputs.size();) {
             try {
                 std::ostringstream messages_of_file, report_of_file;  // (the outputs go to files)
-                statuses[i] = transform_one(o, inputs[i], in, report_of_file, messages_of_file);
+                statuses[i] = transform_one(o, inputs[i], in, report_of_file, messages_of_file, batch ? &*batch : nullptr);
                 messages[i] = messages_of_file.str();
                 reports[i] = report_of_file.str();
                 const std::size_t finished = ++done;
@@ -660,6 +687,14 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
         err << messages[i];
         out << reports[i];
         status = std::max(status, statuses[i]);
+    }
+    if (batch) {
+        try {
+            batch->finish();
+        } catch (const error& e) {
+            print_error(err, e.what());
+            status = 2;
+        }
     }
     return status;
 }

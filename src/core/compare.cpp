@@ -71,11 +71,45 @@ private:
 
 double rounding_of(const track& t) { return t.interpolation ? t.interpolation->time_rounding : 0; }
 
+/// The rate a track's frame numbers count at, and whether the frames'
+/// own times imply it (then as precisely as those times were written).
+struct frame_rate_of {
+    double rate;
+    bool implied;
+};
+
+frame_rate_of rate_of(const track& t) {
+    const key* timed = nullptr;  // the last key whose frame and time give the rate
+    for (const key& k : t.keys) {
+        if (!k.frame) continue;
+        if (!k.has_time) return {t.frame_rate(), false};
+        if (k.time != 0 && *k.frame != 0) timed = &k;
+    }
+    if (!timed) return {t.frame_rate(), false};
+    return {*timed->frame / timed->time, true};
+}
+
+/// Whether frame numbers name the same moments in both tracks: stated (or
+/// assumed) rates are equal; where a rate is implied by frames that carry
+/// their times (rounded as they were written, say to 0.0417), the two
+/// grids stay within half a frame of each other up to the last frame.
+bool same_frames(const track& e, const track& a) {
+    const frame_rate_of re = rate_of(e), ra = rate_of(a);
+    if (!re.implied && !ra.implied) return re.rate == ra.rate;
+    double last = 0;
+    for (const track* t : {&e, &a})
+        for (const key& k : t->keys)
+            if (k.frame) last = std::max(last, std::fabs(*k.frame));
+    return std::fabs(last / re.rate - last / ra.rate) <= 0.5 / std::max(re.rate, ra.rate);
+}
+
 row_difference unmatched(const track& t, const key& k, const char* problem) {
     return {t.name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, problem};
 }
 
 }  // namespace
+
+double counted_rate(const track& t) { return rate_of(t).rate; }
 
 comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual, const tolerances& tol) {
     comparison out;
@@ -94,10 +128,11 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
         const auto has_frames = [](const track& t) {
             return std::any_of(t.keys.begin(), t.keys.end(), [](const key& k) { return k.frame.has_value(); });
         };
-        if (a && a->key_fps != e.key_fps && !out.frame_rates && has_frames(e) && has_frames(*a))
-            out.frame_rates = std::pair(e.key_fps, a->key_fps);
+        const bool same_rates = !a || same_frames(e, *a);
+        if (!same_rates && !out.frame_rates && has_frames(e) && has_frames(*a))
+            out.frame_rates = std::pair(counted_rate(e), counted_rate(*a));
         const std::optional<key_finder> finder =
-            a ? std::optional<key_finder>(std::in_place, *a, a->key_fps == e.key_fps,
+            a ? std::optional<key_finder>(std::in_place, *a, same_rates,
                                           std::max(rounding_of(e), rounding_of(*a)))
               : std::nullopt;
         for (const key& k : e.keys) {

@@ -123,7 +123,7 @@ quat segment_builder::add(const key& k) {
     window_.push_back({k.time, q, q, e, {}});  // s = q until both neighbours are known
     // A key without a spline passes its rotation, with no tangents.
     if (how_ == method::cubicspline)
-        window_.back().spline = k.spline.value_or(spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}});
+        window_.back().spline = k.spline ? *k.spline : spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}};
     const std::size_t n = window_.size();
     if (how_ == method::squad && n >= 3) window_[n - 2].s = squad_control(window_[n - 3].q, window_[n - 2].q, q);
     return q;

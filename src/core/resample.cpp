@@ -104,7 +104,7 @@ void track_resampler::add(const key& k) {
         next_frame_ = frame_span(k.time, k.time, opts_).first;
     }
     if (k.translation || k.scale) {
-        const spline_key spline = k.spline.value_or(spline_key{});
+        const spline_key spline = k.spline ? *k.spline : spline_key{};
         if (k.translation) translation_.add(k.time, *k.translation, spline.translation_in, spline.translation_out);
         if (k.scale) scale_.add(k.time, *k.scale, spline.scale_in, spline.scale_out);
         resolve_vectors(false);

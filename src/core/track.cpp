@@ -74,13 +74,13 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     out.given_as = k.kind;
     out.translation = k.translation;
     out.scale = k.scale;
-    out.spline = k.spline;
+    if (k.spline) out.spline = std::make_shared<const spline_key>(*k.spline);
     // A row with both is a frame of keyrot's own output, at whatever rate it
     // was made: its time times it, its frame is kept as a label (compare
     // matches by it).
     out.frame = k.frame;
     out.has_time = k.time.has_value();
-    out.time = k.time ? *k.time : *k.frame / s.key_fps;
+    out.time = k.time ? *k.time : *k.frame / s.frame_rate();
     if (!k.unknown.empty()) unknown_field(k.unknown, where(source, k.at), s, warn);
     const auto& v = k.values;
     switch (k.kind) {

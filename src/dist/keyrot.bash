@@ -20,15 +20,15 @@ _keyrot() {
 
     local input="--from --strict --key-fps --max-bytes --animation"
     local conventions="--euler --quat-order --radians"
-    local output="-o --output --to --rep --out-euler --out-degrees --out-radians --precision --euler-continuous $conventions"
+    local output="-o --output --fsync --to --rep --out-euler --out-degrees --out-radians --precision --euler-continuous --settings-line $conventions"
     local interpolation="--method --path"
     local flags
     case $command in
         resample) flags="--output-dir --jobs $input $output $interpolation --fps --max-frames" ;;
         convert) flags="--output-dir --jobs $input $output" ;;
         slerp) flags="-t --steps --max-frames --from-rep $interpolation $output" ;;
-        compare) flags="--tol --tol-translation --report -o --output $input $conventions" ;;
-        info) flags="-o --output --to --precision $input $conventions" ;;
+        compare) flags="--tol --tol-translation --report -o --output --fsync $input $conventions" ;;
+        info) flags="-o --output --fsync --to --precision $input $conventions" ;;
         reduce) flags="--output-dir --jobs $input $output $interpolation --tol --tol-translation --report" ;;
         help) flags="" ;;
         *) flags="--version" ;;
@@ -46,6 +46,7 @@ _keyrot() {
         --path) values="shortest direct" ;;
         --quat-order) values="wxyz xyzw" ;;
         --report) values="json" ;;
+        --settings-line) values="needed always never" ;;
         --euler | --out-euler) values=$euler ;;
         -o | --output)
             COMPREPLY=($(compgen -f -- "$cur"))

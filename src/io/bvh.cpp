@@ -134,9 +134,8 @@ private:
             const std::string name(w[i + 1].data(), static_cast<std::size_t>(w[end - 1].end() - w[i + 1].begin()));
             check_track_name(name, fmt::format("{}:{}", source_, lines_.number()));
             add_node(name);
-            // Two joints of one name are two tracks: the second is "<name>#<its line>".
-            const std::string track = names_.insert(name).second ? name : fmt::format("{}#{}", name, lines_.number());
-            names_.insert(track);
+            // Two joints of one name are two tracks: the second is "<name>.2".
+            const std::string track = distinct_track_name(name, names_);
             joint_ = {track, lines_.number(), {}, {}, {}, false};
             in_joint_ = true;
             roots_ += root;

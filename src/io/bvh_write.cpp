@@ -10,7 +10,7 @@ namespace keyrot {
 bvh_output::bvh_output(const std::optional<std::string>& target, std::ostream& out,
                        std::shared_ptr<const bvh_source> source, std::size_t frames, double frame_time,
                        const write_options& opts)
-    : sink_(std::make_unique<detail::chunked_output>(target, out)),
+    : sink_(std::make_unique<detail::chunked_output>(target, out, opts.commit)),
       source_(std::move(source)),
       frames_(frames),
       opts_(opts),

@@ -221,9 +221,8 @@ std::vector<node_track> tracks_of(const gltf_file& file, const read_options& ro,
         for (node_track& n : channels_of(file, a, warn)) {
             n.name = node_name(file, n.origin.node);
             if (animations.size() > 1) n.name = animation_name(file, a) + "/" + n.name;
-            if (names.contains(n.name)) n.name += fmt::format("#node{}", n.origin.node);  // two nodes of one name
             check_track_name(n.name, fmt::format("{}: nodes[{}].name", ro.source, n.origin.node));
-            names.insert(n.name);
+            n.name = distinct_track_name(n.name, names);  // two nodes of one name: "<name>.2"
             tracks.push_back(std::move(n));
         }
     }

@@ -418,9 +418,10 @@ std::string base64(std::string_view bytes) {
 
 class gltf_table final : public table_output {
 public:
-    gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
+    gltf_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
                std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton, warnings& warn)
-        : f_(f), target_(target), out_(out), source_(std::move(source)), skeleton_(std::move(skeleton)), warn_(warn) {}
+        : f_(f), target_(target), commit_(commit), out_(out), source_(std::move(source)), skeleton_(std::move(skeleton)),
+          warn_(warn) {}
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
         tracks_.push_back({name, written, {}, {}, {}, {}, {}});
     }
@@ -439,11 +440,12 @@ public:
         put(t.translation, s.translation, t.how.translation, spline_.translation_in, spline_.translation_out);
         put(t.scale, s.scale, t.how.scale, spline_.scale_in, spline_.scale_out);
     }
-    void finish() override { write_gltf(tracks_, source_.get(), skeleton_, f_, target_, out_, warn_); }
+    void finish() override { write_gltf(tracks_, source_.get(), skeleton_, f_, target_, commit_, out_, warn_); }
 
 private:
     format f_;
     std::optional<std::string> target_;
+    commit_mode commit_;
     std::ostream& out_;
     std::shared_ptr<gltf_source> source_;
     std::vector<gltf_node> skeleton_;
@@ -455,13 +457,14 @@ private:
 }  // namespace
 
 std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
-                                              std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton,
-                                              warnings& warn) {
-    return std::make_unique<gltf_table>(f, target, out, std::move(source), std::move(skeleton), warn);
+                                              commit_mode commit, std::shared_ptr<gltf_source> source,
+                                              std::vector<gltf_node> skeleton, warnings& warn) {
+    return std::make_unique<gltf_table>(f, target, out, commit, std::move(source), std::move(skeleton), warn);
 }
 
-void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, const std::vector<gltf_node>& skeleton, format f,
-                const std::optional<std::string>& target, std::ostream& out, warnings& warn) {
+void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, const std::vector<gltf_node>& skeleton,
+                format f, const std::optional<std::string>& target, commit_mode commit, std::ostream& out,
+                warnings& warn) {
     gltf_json json = source ? source->file.json : gltf_json::object();
     buffer_builder b(json, warn.source());
     gltf_json buffer = gltf_json::object();
@@ -484,7 +487,7 @@ void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, cons
     if (f == format::glb) {
         const std::string bytes = glb_bytes(json.dump(), std::move(b.bytes));
         if (target)
-            write_file_atomically(*target, bytes);
+            write_file_atomically(*target, bytes, commit);
         else
             write_to_stream(out, bytes);
         return;
@@ -497,7 +500,7 @@ void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, cons
     // The .bin beside the .gltf: both written, then put in place (the buffer first).
     const std::filesystem::path bin = std::filesystem::path(*target).replace_extension(".bin");
     json["buffers"][0]["uri"] = bin.filename().string();
-    output_file bin_file(bin.string()), gltf_file_out(*target);
+    output_file bin_file(bin.string(), commit), gltf_file_out(*target, commit);
     bin_file.write(b.bytes);
     gltf_file_out.write(json.dump() + "\n");
     bin_file.commit();

@@ -47,15 +47,15 @@ struct gltf_node {
 /// (tracks[i] is its track i), that file is written with the samplers of
 /// the channels keyrot read replaced and all else kept; otherwise a new
 /// file with the nodes of `skeleton` (none: a node per track) and one
-/// animation. Throws keyrot::error.
+/// animation. The files are put in place as `commit` says. Throws keyrot::error.
 void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, const std::vector<gltf_node>& skeleton,
-                format f,
-                const std::optional<std::string>& target, std::ostream& out, warnings& warn);
+                format f, const std::optional<std::string>& target, commit_mode commit, std::ostream& out,
+                warnings& warn);
 
 /// The rows of the tracks gathered as gltf_tracks (32-bit floats are what
 /// glTF keeps of them), written by write_gltf at finish().
 std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
-                                              std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton,
-                                              warnings& warn);
+                                              commit_mode commit, std::shared_ptr<gltf_source> source,
+                                              std::vector<gltf_node> skeleton, warnings& warn);
 
 }  // namespace keyrot

@@ -6,6 +6,7 @@
 #include <istream>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,7 +25,7 @@ struct read_options {
     /// Which settings the user gave as flags (not defaults): a document
     /// that states otherwise wins, with a warning.
     struct {
-        bool angles = false, key_fps = false;
+        bool angles = false, order = false;
     } given;
     /// Most bytes a CSV or NDJSON line, or a JSON document read whole, may
     /// take: endless input (/dev/zero) ends in an error, not in all memory.
@@ -45,6 +46,11 @@ public:
 
 /// Throws input_error for a track name with control characters.
 void check_track_name(const std::string& name, const std::string& where);
+
+/// A track name none of `taken` has, which it then takes: `name` itself,
+/// else `name.2`, `name.3`, ... (a second BVH joint or glTF node of one
+/// name). Never a '#' or a comma, which CSV readers treat apart.
+std::string distinct_track_name(const std::string& name, std::set<std::string>& taken);
 
 /// Keys one at a time from a document (CSV, NDJSON, a JSON document the
 /// streaming reader takes), in file order, so that a long track needs no
@@ -84,6 +90,7 @@ struct table_info {
     time_columns times = time_columns::frame_and_time;
     bool all_frames = false;  ///< as_given: every row has a frame
     bool any_time = true;     ///< as_given: some row has a time
+    bool counted = false;     ///< as_given: some row has a frame and no time (the frame rate times it)
     std::string_view time_name = "time";
     std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
     std::optional<double> fps;              ///< the rate `frame` counts at, when rows have frames

@@ -275,7 +275,7 @@ private:
     }
 
     void new_key(raw_key& k, std::size_t line_no) const {
-        k = raw_key{};
+        k.reset();
         k.at.line = line_no;
         k.kind = cols_.kind;
     }
@@ -355,8 +355,12 @@ private:
         flat_json settings;
         if (!settings.parse(object) || !settings.root().is_object())
             throw input_error(where, fmt::format("expected a JSON object of settings after '{}'", trim(settings_comment)));
-        quat_order order = opts.order;  // (CSV names its quaternion columns)
-        detail::apply_fields(settings.root(), settings_, order, where, detail::settings_object::header, opts, warn);
+        // CSV names its quaternion columns: an order stated or typed changes nothing.
+        read_options ignoring_order = opts;
+        ignoring_order.given.order = false;
+        quat_order order = opts.order;
+        detail::apply_fields(settings.root(), settings_, order, where, detail::settings_object::header, ignoring_order,
+                             warn);
     }
 
     /// Whether a line has a cell 'time' or 'frame' (any case, unquoted).
@@ -417,8 +421,10 @@ public:
             for (auto c : translation_columns) header.push_back(c);
         if (scale_)
             for (auto c : scale_columns) header.push_back(c);
-        fmt::format_to(std::back_inserter(out_), "{}{{{}}}\n{}\n", settings_comment, settings_members(info, opts),
-                       fmt::join(header, ","));
+        // The settings line only where it is needed: other CSV readers take it for the header.
+        const std::string settings = settings_members(info, opts, opts.states, format::csv);
+        if (!settings.empty()) fmt::format_to(std::back_inserter(out_), "{}{{{}}}\n", settings_comment, settings);
+        fmt::format_to(std::back_inserter(out_), "{}\n", fmt::join(header, ","));
     }
 
     csv_writer(const csv_writer& other, std::string& out)

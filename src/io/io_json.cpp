@@ -361,10 +361,15 @@ class json_writer final : public table_writer {
 public:
     json_writer(std::string& out, const table_info& info, const write_options& opts, warnings& warn, bool lines)
         : out_(out), info_(info), opts_(opts), warn_(warn), lines_(lines) {
-        // NDJSON: a header line of the settings, which no key line has.
-        out_ += '{' + settings_members(info, opts);
-        if (lines_) out_ += "}\n";
-        else if (info.named) out_ += ", \"tracks\": {";
+        if (lines_) {
+            // A header line of the settings, which no key line has, only where it is needed:
+            // other NDJSON readers take it for a row.
+            const std::string settings = settings_members(info, opts, opts.states, format::ndjson);
+            if (!settings.empty()) out_ += '{' + settings + "}\n";
+            return;
+        }
+        out_ += '{' + settings_members(info, opts, settings_line::always, format::json);
+        if (info.named) out_ += ", \"tracks\": {";
     }
 
     json_writer(const json_writer& other, std::string& out)

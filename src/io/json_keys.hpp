@@ -212,13 +212,14 @@ void apply_fields(Value obj, key_settings& s, quat_order& order, const std::stri
     if (auto o = text("quat_order")) {
         const auto q = parse<quat_order>(*o);
         if (!q) throw input_error(where, fmt::format("'quat_order': expected \"wxyz\" or \"xyzw\", got \"{}\"", excerpt(*o)));
+        if (*q != opts.order) conflict("quat_order", opts.given.order, fmt::format("--quat-order {}", to_string(opts.order)));
         order = *q;
     }
     if (const auto f = obj.member("fps")) {
         if (!f->is_number() || !(f->number() > 0) || !std::isfinite(f->number()))
             throw input_error(where, "'fps': expected a positive number");
-        if (f->number() != opts.settings.key_fps)
-            conflict("fps", opts.given.key_fps, fmt::format("--key-fps {}", opts.settings.key_fps));
+        if (opts.settings.key_fps && f->number() != *opts.settings.key_fps)
+            conflict("fps", true, fmt::format("--key-fps {}", *opts.settings.key_fps));
         s.key_fps = f->number();
     }
 }

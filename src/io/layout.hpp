@@ -9,7 +9,9 @@
 #include <string>
 #include <string_view>
 
+#include "io/output.hpp"
 #include "keyrot/convert.hpp"
+#include "keyrot/names.hpp"
 #include "keyrot/quat.hpp"
 
 namespace keyrot {
@@ -27,6 +29,17 @@ inline constexpr std::array<std::string_view, 3> scale_columns = {"sx", "sy", "s
 /// Reorder 4 values between file order and (w, x, y, z).
 std::array<double, 4> from_quat_order(std::array<double, 4> v, quat_order order) noexcept;
 
+/// When a CSV or NDJSON output states its settings in a line of their own
+/// (a leading "# keyrot {...}" comment, an NDJSON header object), which
+/// other readers of the format take for a row: when keyrot, reading the
+/// output back with no flags, would otherwise misread it (needed), always,
+/// or never (--settings-line). A JSON document always states them, as
+/// fields.
+enum class settings_line { needed, always, never };
+template <>
+inline constexpr std::array<enum_name<settings_line>, 3> names_of<settings_line> = {
+    {{settings_line::needed, "needed"}, {settings_line::always, "always"}, {settings_line::never, "never"}}};
+
 struct write_options {
     rep representation = rep::axis_angle;
     std::optional<euler_seq> euler;  ///< required for rep::euler
@@ -39,6 +52,9 @@ struct write_options {
     std::shared_ptr<bvh_source> bvh = nullptr;
     /// Euler output: each row's angles nearest the row's before (continuous_euler).
     bool euler_continuous = false;
+    settings_line states = settings_line::needed;
+    /// How an output file is put in place (--fsync).
+    commit_mode commit;
 };
 
 /// A rotation's values in column order, angles in the output unit.

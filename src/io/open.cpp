@@ -35,7 +35,7 @@ class piped_table final : public table_output {
 public:
     piped_table(format f, const std::optional<std::string>& path, std::ostream& out, const table_info& info,
                 const write_options& opts, warnings& warn)
-        : sink_(path, out), writer_(make_writer(f, sink_.text(), info, opts, warn)),
+        : sink_(path, out, opts.commit), writer_(make_writer(f, sink_.text(), info, opts, warn)),
           rows_(*writer_, sink_, detail::formatting_threads()) {}
     void begin_track(const std::string& name, channels carried, const track_interpolation&) override {
         rows_.begin_track(name, carried);
@@ -87,7 +87,7 @@ std::unique_ptr<table_output> open_table(format f, const std::optional<std::stri
         std::vector<gltf_node> skeleton;
         if (opts.bvh)
             for (const bvh_node& n : opts.bvh->nodes) skeleton.push_back({n.name, n.parent, n.offset, n.joint});
-        return make_gltf_table(f, path, out, opts.gltf, std::move(skeleton), warn);
+        return make_gltf_table(f, path, out, opts.commit, opts.gltf, std::move(skeleton), warn);
     }
     // (BVH to BVH is written frame by frame, by bvh_output.)
     if (f == format::bvh)

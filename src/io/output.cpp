@@ -15,8 +15,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <ostream>
+#include <set>
 #include <utility>
 
 #include "keyrot/error.hpp"
@@ -54,29 +56,36 @@ bool is_replaced(const std::string& path, const std::optional<struct stat>& st) 
     return !descriptor_named(path) && (!st || S_ISREG(st->st_mode));
 }
 
-/// Temporary files being written, removed by the handler of SIGINT, SIGTERM
-/// and SIGHUP before the signal takes its course: fixed slots, so that the
-/// handler only reads memory and calls unlink, as a handler may.
+/// Temporary files being written (or waiting for a durable batch), removed
+/// by the handler of SIGINT, SIGTERM and SIGHUP before the signal takes its
+/// course: slots in blocks that are added as needed and never freed, so
+/// that the handler only reads memory and calls unlink, as a handler may.
 class temporaries {
 public:
     static temporaries& instance() {
         static temporaries t;
         return t;
     }
-    /// A slot holding `path`, or none when all are taken (the file is then
-    /// left behind by a signal, as before).
+    /// A slot holding `path`, or none for a path too long to hold (the file
+    /// is then left behind by a signal).
     std::optional<std::size_t> add(const std::string& path) {
         if (path.size() >= PATH_MAX) return std::nullopt;
-        for (std::size_t i = 0; i < slots_.size(); ++i) {
-            int free = 0;
-            if (!slots_[i].state.compare_exchange_strong(free, 1)) continue;
-            std::memcpy(slots_[i].path, path.c_str(), path.size() + 1);
-            slots_[i].state = 2;
-            return i;
+        std::size_t first = 0;
+        for (block* b = &first_;; b = next_of(*b), first += block_slots) {
+            for (std::size_t i = 0; i < block_slots; ++i) {
+                int free = 0;
+                if (!b->slots[i].state.compare_exchange_strong(free, 1)) continue;
+                std::memcpy(b->slots[i].path, path.c_str(), path.size() + 1);
+                b->slots[i].state = 2;
+                return first + i;
+            }
         }
-        return std::nullopt;
     }
-    void remove(std::size_t at) { slots_[at].state = 0; }
+    void remove(std::size_t at) {
+        block* b = &first_;
+        for (; at >= block_slots; at -= block_slots) b = b->next.load();
+        b->slots[at].state = 0;
+    }
 
 private:
     temporaries() {
@@ -90,16 +99,30 @@ private:
         }
     }
     static void on_signal(int sig) {
-        for (auto& taken : instance().slots_)
-            if (taken.state == 2) ::unlink(taken.path);
+        for (const block* b = &instance().first_; b; b = b->next.load())
+            for (const auto& taken : b->slots)
+                if (taken.state == 2) ::unlink(taken.path);
         ::signal(sig, SIG_DFL);
         ::raise(sig);
     }
+    static constexpr std::size_t block_slots = 64;
     struct path_slot {
         std::atomic<int> state{0};  // 0 free, 1 being filled, 2 holds a path
         char path[PATH_MAX];
     };
-    std::array<path_slot, 64> slots_;
+    struct block {
+        std::array<path_slot, block_slots> slots;
+        std::atomic<block*> next{nullptr};
+    };
+    /// The block after `b`, added if there is none yet.
+    static block* next_of(block& b) {
+        block* next = b.next.load();
+        if (next) return next;
+        auto fresh = std::make_unique<block>();
+        if (b.next.compare_exchange_strong(next, fresh.get())) return fresh.release();
+        return next;  // another thread added one
+    }
+    block first_;
 };
 
 /// SIGINT, SIGTERM and SIGHUP held back on this thread while it lives.
@@ -121,6 +144,24 @@ private:
 
 std::string errno_text(int err) { return std::strerror(err); }
 
+std::string cannot_write(const std::string& path, int err) {
+    return fmt::format("cannot write '{}': {}", path, errno_text(err));
+}
+
+std::string parent_of(const std::string& path) {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    return parent.empty() ? "." : parent.string();
+}
+
+/// Makes a rename in `directory` durable. (Some filesystems cannot sync a
+/// directory: the rename stands all the same.)
+void sync_directory(const std::string& directory) {
+    const int fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return;
+    ::fsync(fd);
+    ::close(fd);
+}
+
 }  // namespace
 
 bool replaced_on_commit(const std::string& path) { return is_replaced(path, status_of(path)); }
@@ -135,7 +176,7 @@ void write_to_stream(std::ostream& out, std::string_view text) {
     throw error(err ? "cannot write to standard output: " + errno_text(err) : "cannot write to standard output");
 }
 
-output_file::output_file(std::string path) : path_(std::move(path)) {
+output_file::output_file(std::string path, commit_mode mode) : path_(std::move(path)), mode_(mode) {
     if (const auto fd = descriptor_named(path_)) {
         fd_ = ::fcntl(*fd, F_DUPFD_CLOEXEC, 0);
         if (fd_ < 0) fail(errno);
@@ -210,7 +251,7 @@ output_file::~output_file() {
     if (slot_) temporaries::instance().remove(*slot_);
 }
 
-void output_file::fail(int err) const { throw error(fmt::format("cannot write '{}': {}", path_, errno_text(err))); }
+void output_file::fail(int err) const { throw error(cannot_write(path_, err)); }
 
 void output_file::write(std::string_view data) {
     while (!data.empty()) {
@@ -221,41 +262,85 @@ void output_file::write(std::string_view data) {
         }
         if (n == 0) fail(ENOSPC);
         data.remove_prefix(static_cast<std::size_t>(n));
-        // Start writing back now, on this thread: the fsync at commit then
-        // has less left to wait for.
-        if (!temp_.empty()) ::sync_file_range(fd_, written_, n, SYNC_FILE_RANGE_WRITE);
+        // Durable: start writing back now, on this thread, so that the sync
+        // at commit has less left to wait for.
+        if (!temp_.empty() && mode_.fsync) ::sync_file_range(fd_, written_, n, SYNC_FILE_RANGE_WRITE);
         written_ += n;
     }
 }
 
 void output_file::commit() {
-    const int fd = fd_;
-    fd_ = -1;
-    // Replacing is durable as careful tools make it: the new file's data
-    // on disk before the rename, the rename on disk before success.
-    if (!temp_.empty() && ::fsync(fd) != 0) {
+    const int fd = std::exchange(fd_, -1);
+    // Durable as careful tools make it: the new file's data on disk before
+    // the rename, the rename on disk before success (a batch does both for
+    // all its files at once).
+    const bool sync_here = mode_.fsync && !mode_.batch;
+    if (!temp_.empty() && sync_here && ::fsync(fd) != 0) {
         const int err = errno;
         ::close(fd);
         fail(err);
     }
     if (::close(fd) != 0) fail(errno);
     if (temp_.empty()) return;
+    if (mode_.fsync && mode_.batch) {
+        mode_.batch->add({path_, std::exchange(temp_, {}), target_, std::exchange(slot_, std::nullopt)});
+        return;
+    }
     if (std::rename(temp_.c_str(), target_.c_str()) != 0) fail(errno);
     temp_.clear();
     if (slot_) temporaries::instance().remove(*std::exchange(slot_, std::nullopt));
-    const std::filesystem::path parent = std::filesystem::path(target_).parent_path();
-    const int directory = ::open(parent.empty() ? "." : parent.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (directory >= 0) {
-        // (Some filesystems cannot sync a directory: the rename stands all the same.)
-        ::fsync(directory);
-        ::close(directory);
-    }
+    if (sync_here) sync_directory(parent_of(target_));
 }
 
-void write_file_atomically(const std::string& path, std::string_view data) {
-    output_file f(path);
+void write_file_atomically(const std::string& path, std::string_view data, commit_mode mode) {
+    output_file f(path, mode);
     f.write(data);
     f.commit();
+}
+
+void durable_batch::add(pending file) {
+    const std::lock_guard lock(mutex_);
+    files_.push_back(std::move(file));
+}
+
+void durable_batch::finish() {
+    std::vector<pending> files;
+    {
+        const std::lock_guard lock(mutex_);
+        files.swap(files_);
+    }
+    std::optional<std::string> failure;
+    // The data of every file on disk, one sync per filesystem, before any rename.
+    std::set<std::string> directories;
+    for (const pending& f : files) directories.insert(parent_of(f.target));
+    std::set<dev_t> synced;
+    for (const std::string& directory : directories) {
+        const int fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        struct stat st {};
+        const bool opened = fd >= 0 && ::fstat(fd, &st) == 0;
+        if (opened && synced.insert(st.st_dev).second && ::syncfs(fd) != 0 && !failure) failure = cannot_write(directory, errno);
+        if (fd >= 0) ::close(fd);
+    }
+    if (failure) {
+        files_.swap(files);  // removed by the destructor
+        throw error(*failure);
+    }
+    for (pending& f : files) {
+        if (std::rename(f.temp.c_str(), f.target.c_str()) != 0) {
+            if (!failure) failure = cannot_write(f.path, errno);
+            std::remove(f.temp.c_str());
+        }
+        if (f.slot) temporaries::instance().remove(*f.slot);
+    }
+    for (const std::string& directory : directories) sync_directory(directory);
+    if (failure) throw error(*failure);
+}
+
+durable_batch::~durable_batch() {
+    for (const pending& f : files_) {
+        std::remove(f.temp.c_str());
+        if (f.slot) temporaries::instance().remove(*f.slot);
+    }
 }
 
 }  // namespace keyrot

@@ -2,11 +2,27 @@
 // Writing results so that a failure never leaves a partial file behind.
 #include <cstddef>
 #include <iosfwd>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace keyrot {
+
+class durable_batch;
+
+/// How an output file is put in place. By default as `sort -o`, `cp` and
+/// `install` do: renamed over its target, so that readers never see a
+/// partial file and a failure leaves the old one, but not waited for on
+/// the disk. With `fsync` (--fsync), also durable against a power cut:
+/// the new file's data on disk before the rename, the rename on disk
+/// before success; with a `batch` as well, that wait is paid once for the
+/// batch's files (durable_batch) rather than once for each.
+struct commit_mode {
+    bool fsync = false;
+    durable_batch* batch = nullptr;
+};
 
 /// Whether output to `path` goes to a temporary file renamed into place (a
 /// regular file, or none yet) rather than straight into `path` (a device, a
@@ -21,8 +37,8 @@ void write_to_stream(std::ostream& out, std::string_view text);
 
 /// A temporary file beside `path` (beside the file it links to, for a
 /// symbolic link of the caller's or of the directory's owner), written in
-/// pieces and renamed into place by commit(), durably (fsync of the file,
-/// then of its directory), so `path` is either untouched or complete; the
+/// pieces and renamed into place by commit() as `mode` says (or handed to
+/// its batch, which renames it), so `path` is either untouched or complete; the
 /// file keeps the permission bits of the one it replaces (not set-user-ID
 /// or set-group-ID), and a file the caller may not write is refused.
 /// Destroyed without commit(), or on SIGINT, SIGTERM or SIGHUP, it removes
@@ -31,7 +47,7 @@ void write_to_stream(std::ostream& out, std::string_view text);
 /// 'out.csv': Permission denied") on failure.
 class output_file {
 public:
-    explicit output_file(std::string path);
+    explicit output_file(std::string path, commit_mode mode = {});
     output_file(const output_file&) = delete;
     output_file& operator=(const output_file&) = delete;
     ~output_file();
@@ -44,12 +60,42 @@ private:
     std::string resolve(const std::string& path) const;
 
     std::string path_, target_, temp_;  // no temp_: straight into path_
+    commit_mode mode_;
     int fd_ = -1;
     long long written_ = 0;
     std::optional<std::size_t> slot_;  // temp_'s, for the signal handler
 };
 
-/// output_file(path), write(data), commit().
-void write_file_atomically(const std::string& path, std::string_view data);
+/// output_file(path, mode), write(data), commit().
+void write_file_atomically(const std::string& path, std::string_view data, commit_mode mode = {});
+
+/// The files of a batch (--output-dir with --fsync), made durable
+/// together: each written and closed, then one sync of the filesystems
+/// they are on (syncfs), then each renamed into place, then one more sync
+/// for the renames. A power cut leaves every target either as it was or
+/// complete, and the disk is waited for twice in all, not twice a file.
+/// What is not put in place by finish() (a failure, an exception) is
+/// removed with the batch. Files may be added from several threads.
+class durable_batch {
+public:
+    durable_batch() = default;
+    durable_batch(const durable_batch&) = delete;
+    durable_batch& operator=(const durable_batch&) = delete;
+    ~durable_batch();
+    /// Syncs and renames every file added. Throws keyrot::error naming the
+    /// first file it could not put in place (the rest are put in place).
+    void finish();
+
+private:
+    friend class output_file;
+    struct pending {
+        std::string path, temp, target;
+        std::optional<std::size_t> slot;
+    };
+    void add(pending file);
+
+    std::mutex mutex_;
+    std::vector<pending> files_;
+};
 
 }  // namespace keyrot

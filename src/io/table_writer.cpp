@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iterator>
+#include <vector>
 
 #include "io/layout.hpp"
 
@@ -15,16 +16,31 @@ rotation_values row_values(const sample& s, const write_options& opts, warnings&
     return r;
 }
 
-std::string settings_members(const table_info& info, const write_options& opts) {
-    std::string out;
-    if (info.fps) out += "\"fps\": ", append_number(out, *info.fps, std::nullopt), out += ", ";
-    if (info.method) fmt::format_to(std::back_inserter(out), "\"method\": \"{}\", ", *info.method);
-    fmt::format_to(std::back_inserter(out), "\"rep\": \"{}\", \"angles\": \"{}\"", to_string(opts.representation),
-                   to_string(opts.angles));
-    if (opts.representation == rep::euler) fmt::format_to(std::back_inserter(out), ", \"euler\": \"{}\"", opts.euler->name);
-    if (opts.representation == rep::quat)
-        fmt::format_to(std::back_inserter(out), ", \"quat_order\": \"{}\"", to_string(opts.order));
-    return out;
+std::string settings_members(const table_info& info, const write_options& opts, settings_line which, format f) {
+    if (which == settings_line::never) return {};
+    const bool all = which == settings_line::always;
+    // Rows timed by their frame number alone: CSV writes frames without a
+    // time column when every row has a frame and none a time; NDJSON writes
+    // each row's own.
+    const bool counted = f == format::csv ? info.times == time_columns::as_given && info.all_frames && !info.any_time
+                                          : info.counted;
+    const rep r = opts.representation;
+    const bool angles = r == rep::axis_angle || r == rep::rotvec || r == rep::euler;
+    const bool arrays = f != format::csv;  // (CSV names its quaternion columns)
+    std::vector<std::string> members;
+    if (info.fps && (all || (counted && *info.fps != default_key_fps))) {
+        std::string fps = "\"fps\": ";
+        append_number(fps, *info.fps, std::nullopt);
+        members.push_back(std::move(fps));
+    }
+    if (all && info.method) members.push_back(fmt::format("\"method\": \"{}\"", *info.method));
+    if (all) members.push_back(fmt::format("\"rep\": \"{}\"", to_string(r)));
+    if (all || (angles && opts.angles != angle_unit::degrees))
+        members.push_back(fmt::format("\"angles\": \"{}\"", to_string(opts.angles)));
+    if (all && r == rep::euler) members.push_back(fmt::format("\"euler\": \"{}\"", opts.euler->name));
+    if (r == rep::quat && (all || (arrays && opts.order != quat_order::wxyz)))
+        members.push_back(fmt::format("\"quat_order\": \"{}\"", to_string(opts.order)));
+    return fmt::format("{}", fmt::join(members, ", "));
 }
 
 }  // namespace keyrot

@@ -25,11 +25,18 @@ public:
 /// A row's rotation values; Euler output warns once about gimbal lock.
 rotation_values row_values(const sample& s, const write_options& opts, warnings& warn);
 
-/// What an output states about itself, so that it reads back with the
-/// same meaning and no flags, as the members of a JSON object:
+/// What an output of format `f` states about itself, as the members of a
+/// JSON object: a JSON document's first fields, an NDJSON header line, a
+/// CSV "# keyrot" line. With settings_line::always (a JSON document's), all
+/// that describe it:
 /// `"fps": 24, "method": "slerp", "rep": "quat", "angles": "degrees", "quat_order": "wxyz"`
-/// (fps and method when known, euler and quat_order where the rep has them).
-/// A JSON document's first fields, an NDJSON header line, a CSV "# keyrot" line.
-std::string settings_members(const table_info& info, const write_options& opts);
+/// (fps and method when known, euler and quat_order where the rep has
+/// them); with needed, only what keyrot, reading the rows back with no
+/// flags, would otherwise misread without a word: the rate of frame
+/// numbers without times when it is not default_key_fps, angles in
+/// radians, the order of NDJSON's quaternion arrays when it is not wxyz
+/// (an Euler sequence has no default: read without one, it is refused,
+/// naming --euler). Empty with never, or when nothing is needed.
+std::string settings_members(const table_info& info, const write_options& opts, settings_line which, format f);
 
 }  // namespace keyrot

@@ -23,7 +23,7 @@ namespace {
 std::string describe(const std::string& track, const keyrot::key_settings& s, const keyrot::raw_key& k) {
     const auto number = [](const std::optional<double>& v) { return v ? fmt::format("{}", *v) : "-"; };
     std::string out = fmt::format("{} {} {} {} {} {} {} {} [{}]", track, static_cast<int>(s.angles),
-                                  s.euler ? s.euler->name : "-", s.key_fps, k.at.path, number(k.time),
+                                  s.euler ? s.euler->name : "-", s.frame_rate(), k.at.path, number(k.time),
                                   number(k.frame), static_cast<int>(k.kind), fmt::join(k.values, " "));
     if (k.translation) out += fmt::format(" {} {} {}", k.translation->x, k.translation->y, k.translation->z);
     if (k.scale) out += fmt::format(" scale {} {} {}", k.scale->x, k.scale->y, k.scale->z);

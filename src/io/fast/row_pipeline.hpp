@@ -29,8 +29,8 @@ namespace keyrot::detail {
 /// caller, where the system refuses that thread).
 class chunked_output {
 public:
-    chunked_output(const std::optional<std::string>& path, std::ostream& out) : out_(out) {
-        if (path) file_.emplace(*path);
+    chunked_output(const std::optional<std::string>& path, std::ostream& out, commit_mode commit) : out_(out) {
+        if (path) file_.emplace(*path, commit);
         text_.reserve(chunk + chunk / 4);
     }
     chunked_output(const chunked_output&) = delete;
