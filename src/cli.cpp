@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <ostream>
 #include <span>
 
@@ -23,11 +24,11 @@ struct raw_flags {
     std::string from, to, rep, euler, out_euler, quat_order, method,
                         path = "shortest", from_rep = "quat", report,
                         settings_line;
-    bool out_degrees = false, out_radians = false;
+    bool out_degrees = false, out_radians = false, ignore_extra = false;
     std::optional<int> precision;
     std::optional<double> key_fps;
     std::optional<int> jobs;
-    std::string expected, actual;  // compare's files
+    std::string tol;  // an angle: degrees, or with a unit (0.1deg, 0.002rad)
 };
 
 /// An enumeration's names, for CLI::IsMember.
@@ -44,7 +45,9 @@ void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--from", f.from, "input format (default: by extension, else sniffed)")
         ->check(CLI::IsMember(names<format>()));
     sub.add_flag("--strict", o.strict, "a quaternion whose norm is not 1 is an error");
-    sub.add_option("--key-fps", f.key_fps, "frame rate of 'frame' keys (default: the file's, else 24, whatever --fps is)");
+    sub.add_option("--key-fps", f.key_fps,
+                   fmt::format("frame rate of 'frame' keys (default: the file's, else 24{})",
+                               sub.get_name() == "resample" ? ", whatever --fps is" : ""));
     sub.add_option("--max-bytes", o.max_bytes,
                    fmt::format("most bytes a CSV or NDJSON line, a JSON document or a glTF file read whole, may take (default {}: "
                                "{} MiB)",
@@ -113,6 +116,22 @@ euler_seq euler_flag(const std::string& flag, const std::string& value) {
                                   flag, excerpt(value)));
 }
 
+/// An angle flag's value in degrees: a number, or a number and its unit,
+/// "deg", "°" or "rad" ("0.1deg", "0.002 rad").
+double angle_flag(const char* flag, std::string_view text) {
+    std::string_view number = trim(text);
+    double per_unit = 1;
+    for (const auto& [unit, degrees] : {std::pair("deg", 1.0), std::pair("°", 1.0), std::pair("rad", 180 / std::numbers::pi)})
+        if (number.ends_with(unit)) {
+            number = trim(number.substr(0, number.size() - std::string_view(unit).size()));
+            per_unit = degrees;
+            break;
+        }
+    const auto v = parse_number(number);
+    if (!v) throw usage_error(fmt::format("{}: expected an angle in degrees, like 0.1 or 0.1deg (or 0.002rad), got '{}'", flag, excerpt(text)));
+    return *v * per_unit;
+}
+
 void check_rate(const char* flag, double v) {
     // A subnormal rate has no finite frame period: 1e-320 fps is no rate.
     if (!(std::isnormal(v) && v > 0)) throw usage_error(fmt::format("{}: expected a positive frame rate, got {}", flag, v));
@@ -136,7 +155,11 @@ void finish(options& o, const raw_flags& f) {
     }
     o.from_rep = *parse<rep>(f.from_rep);
     if (!f.settings_line.empty()) o.settings_when = *parse<settings_line>(f.settings_line);
-    o.report_json = f.report == "json";
+    if (!f.report.empty()) o.report = parse<format>(f.report);
+    if (!f.tol.empty()) o.tol_deg = angle_flag("--tol", f.tol);
+    if (o.cmd == command::compare && o.inputs.size() < 2)
+        throw usage_error("compare: ANSWER is missing: expected the key, then one answer or more (see keyrot compare --help)");
+    if (f.ignore_extra) o.extra = extra_rows::allowed;
     if (!f.method.empty()) o.how = parse<method>(f.method);
     o.way = *parse<path>(f.path);
     check_rate("--fps", o.fps);
@@ -153,7 +176,6 @@ void finish(options& o, const raw_flags& f) {
     }
     for (double t : o.ts)
         if (!std::isfinite(t)) throw usage_error(fmt::format("-t: expected a finite number, got {}", t));
-    if (o.cmd == command::compare) o.inputs = {f.expected, f.actual};
     if (o.cmd == command::info && o.output && (o.output->ends_with(".csv") || o.output->ends_with(".ndjson")))
         throw usage_error(fmt::format("-o {}: info writes text, or JSON with --to json or a .json name", *o.output));
 }
@@ -191,14 +213,15 @@ void define_convert(CLI::App& sub, options& o, raw_flags& f) {
     sub.footer(R"(Examples:
   keyrot convert walk.csv --rep euler --euler ZYX -o walk.ndjson
   keyrot convert homework.json --rep matrix --to csv
-  keyrot convert head_turn.json --rep quat --quat-order xyzw --radians)");
+  keyrot convert head_turn.json --rep rotvec --out-radians)");
 }
 
 void define_slerp(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("Q0", o.q0, "first rotation, comma-separated (see --from-rep)")->required();
     sub.add_option("Q1", o.q1, "second rotation")->required();
     sub.option_defaults()->group("Interpolation");
-    sub.add_option("-t", o.ts, "interpolation parameter; may repeat");
+    sub.add_option("-t", o.ts, "interpolation parameter in [0, 1]; may repeat, or be a list: -t 0.25,0.5,0.75")
+        ->delimiter(',');
     sub.add_option("--steps", o.steps, "sample t = 0, 1/N, ..., 1");
     sub.add_option("--max-frames", o.max_frames, fmt::format("most rows --steps may make (default {:.0f})", o.max_frames));
     sub.add_option("--from-rep", f.from_rep,
@@ -215,19 +238,32 @@ void define_slerp(CLI::App& sub, options& o, raw_flags& f) {
 }
 
 void define_compare(CLI::App& sub, options& o, raw_flags& f) {
-    sub.add_option("EXPECTED", f.expected, "the key: expected rotations ('-': standard input)")->required();
-    sub.add_option("ACTUAL", f.actual, "the answer to grade ('-': standard input)")->required();
+    sub.add_option("KEY", o.inputs,
+                   "the key (expected rotations), then one answer or more to grade ('-': standard input)")
+        ->required();
     sub.option_defaults()->group("Grading");
-    sub.add_option("--tol", o.tol_deg, fmt::format("largest rotation difference in degrees (default {})", o.tol_deg));
+    sub.add_option("--tol", f.tol,
+                   fmt::format("largest rotation difference, in degrees or with a unit: 0.1deg, 0.002rad (default {})",
+                               o.tol_deg));
     sub.add_option("--tol-translation", o.tol_translation,
                    fmt::format("largest translation difference (default {})", o.tol_translation));
+    sub.add_flag("--ignore-extra", f.ignore_extra,
+                 "grade only the rows the key has: rows and tracks only an answer has are counted, not failed");
     sub.option_defaults()->group("Output");
-    sub.add_option("--report", f.report, "json: a JSON report on standard output")->check(CLI::IsMember({"json"}));
-    sub.add_option("-o,--output", o.output, "file for the summary, or the report (default: standard output)");
+    sub.add_option("--report", f.report,
+                   "csv or json on standard output: one answer's rows, or several answers' grade table (default: "
+                   "the summary, or the grade table as text)")
+        ->check(CLI::IsMember({"csv", "json"}));
+    sub.add_option("-o,--output", o.output, "file for the summary, the report or the table (default: standard output)");
     add_fsync_flag(sub, o);
     add_input_flags(sub, o, f);
     add_convention_flags(sub, o, f);
-    sub.footer(R"(Exit status: 0 every row within tolerance, 1 some row differs or is missing, 2 an error.
+    sub.footer(R"(With one answer, a summary line (or --report's rows); with several, a grade table, one row per answer,
+and a count on standard error.
+
+Exit status: one answer: 0 every row within tolerance, 1 some row differs or is missing, 2 an error (the answer
+unreadable among them); several: 0 every answer passes, 1 some answer fails or cannot be read, 2 a usage error or
+an unreadable key.
 
 Examples:
   keyrot convert walk.csv --rep matrix -o answer.csv && keyrot compare walk.csv answer.csv
@@ -240,8 +276,10 @@ void define_reduce(CLI::App& sub, options& o, raw_flags& f) {
     add_output_flags(sub, o, f);
     add_method_flags(sub, f);
     sub.option_defaults()->group("Tolerance");
-    sub.add_option("--tol", o.tol_deg,
-                   fmt::format("largest rotation error in degrees at any input key (default {})", o.tol_deg));
+    sub.add_option("--tol", f.tol,
+                   fmt::format("largest rotation error at any input key, in degrees or with a unit: 0.1deg, 0.002rad "
+                               "(default {})",
+                               o.tol_deg));
     sub.add_option("--tol-translation", o.tol_translation,
                    fmt::format("largest translation (and scale) error at any input key (default {})",
                                o.tol_translation));
@@ -321,8 +359,8 @@ std::string nearest(std::string_view word, const std::vector<std::string>& names
 /// For an unexpected flag (CLI11's "The following argument was not
 /// expected: --fsp"), " (did you mean '--fps'?)" when one of the command's
 /// flags is a slip of the keyboard away (one edit for a name of four letters
-/// or fewer, two for a longer one); else nothing: compare's "--rep" is no
-/// "--help".
+/// or fewer, two for a longer one), or the longest flag it spells out
+/// ("--tolerance": "--tol"); else nothing: compare's "--rep" is no "--help".
 std::string flag_suggestion(const CLI::App& sub, const std::string& message) {
     const auto colon = message.rfind(": ");
     if (colon == std::string::npos) return "";
@@ -344,7 +382,12 @@ std::string flag_suggestion(const CLI::App& sub, const std::string& message) {
     if (flags.empty()) return "";
     const std::string best = nearest(word, flags);
     const std::size_t letters = word.size() - std::min(word.find_first_not_of('-'), word.size());
-    return edit_distance(word, best) <= (letters <= 4 ? 1u : 2u) ? fmt::format(" (did you mean '{}'?)", best) : "";
+    if (edit_distance(word, best) <= (letters <= 4 ? 1u : 2u)) return fmt::format(" (did you mean '{}'?)", best);
+    // A flag spelt out in full ("--tolerance" for "--tol"): the longest flag it begins with.
+    std::string longest;
+    for (const std::string& flag : flags)
+        if (flag.size() > 2 && word.starts_with(flag) && flag.size() > longest.size()) longest = flag;
+    return longest.empty() ? "" : fmt::format(" (did you mean '{}'?)", longest);
 }
 
 std::vector<std::string> command_names() {
@@ -430,7 +473,7 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
     } catch (const CLI::ParseError& e) {
         if (!known) throw usage_error(fmt::format("expected a command: {} (see keyrot --help)", listed_commands()));
         std::string what = e.what();
-        if (what == "ACTUAL is required") what = "ACTUAL is missing: expected two files, EXPECTED ACTUAL";
+        if (what == "KEY is required") what = "KEY and ANSWER are missing: expected the key, then one answer or more";
         if (dynamic_cast<const CLI::ExtrasError*>(&e))
             for (std::size_t i = 0; i < commands.size(); ++i)
                 if (first == commands[i].name) what += flag_suggestion(*subs[i], what);
@@ -443,7 +486,7 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
         for (const auto& [flag, tol] : {std::pair("--tol", o.tol_deg), std::pair("--tol-translation", o.tol_translation)})
             if (!(std::isfinite(tol) && tol >= 0))
                 throw usage_error(fmt::format("{}: expected a tolerance of 0 or more, got {}", flag, tol));
-    if (o.cmd == command::reduce && o.report_json && !o.output && !o.output_dir)
+    if (o.cmd == command::reduce && o.report && !o.output && !o.output_dir)
         throw usage_error("--report json: the report takes standard output: expected -o FILE or --output-dir DIR for "
                           "the keys");
     return o;

@@ -164,7 +164,7 @@ TEST_CASE("command-line checks") {
     CHECK(usage({"resample", "--out-degrees", "--out-radians"}).find("excludes") != std::string::npos);
     CHECK(usage({}).find("expected a command: resample, convert") == 0);
     CHECK(usage({"interp", "x"}).find("unknown command 'interp'") == 0);
-    CHECK(usage({"compare", "key.csv"}).find("compare: ACTUAL is missing") == 0);
+    CHECK(usage({"compare", "key.csv"}).find("compare: ANSWER is missing") == 0);
     CHECK(usage({"slerp", "1,0,0,0", "0,0,0,1", "-t", "nan"}) == "-t: expected a finite number, got nan");
     // a flag either does what its name says for the command, or is refused
     CHECK(usage({"info", "--to", "csv"}).find("--to") != std::string::npos);

@@ -20,13 +20,19 @@ for command in resample convert slerp compare info reduce; do
     examples=$(echo "$help" | sed -n '/^Examples:/,$p' | sed -n 's/^  \(keyrot .*\)/\1/p')
     (($(echo "$examples" | wc -l) >= 2)) || fail "$command --help: expected two or more examples"
     echo "$help" | grep -q '(default' || fail "$command --help shows no defaults"
-    while read -r example; do
-        if out=$(bash -c "$example" 2>&1 >/dev/null); then
+    while read -r example; do  # (and without a warning)
+        if out=$(bash -c "$example" 2>&1 >/dev/null) && ! grep -q warning <<<"$out"; then
             echo "ok   $example"
         else
             fail "$example: $out"
         fi
     done <<<"$examples"
+    # Every flag the help names (outside its examples, which may run other
+    # commands) is one the command takes.
+    taken=$(echo "$help" | grep -E '^ +-' | grep -oE -- '--[a-z][a-z0-9-]*' | sort -u)
+    for flag in $(echo "$help" | grep -v '^  keyrot ' | grep -oE -- '--[a-z][a-z0-9-]*' | sort -u); do
+        grep -qx -- "$flag" <<<"$taken" || fail "$command --help names $flag, which $command does not take"
+    done
 done
 for flag in --rep --method --path --quat-order; do  # (the text may be on the line under the flag)
     keyrot resample --help | grep -A1 -E -- "^  $flag " | grep -q "(default: " || fail "resample --help: $flag has no default"

@@ -196,12 +196,12 @@ expect "1e-400 in CSV and JSON alike" 0 "0,1,0,0,0
 expect "info -o info.json writes JSON" 0 "walk.csv 2" -- bash -c \
     "'$keyrot' info walk.csv -o info.json && /usr/bin/env python3 -c 'import json; d = json.load(open(\"info.json\")); print(d[\"source\"], len(d[\"tracks\"]))'"
 expect_error "info --to csv" "keyrot: info: --to: csv not in {json} (see keyrot info --help)" -- "$keyrot" info walk.csv --to csv
-expect_error "compare --rep" "keyrot: compare: The following arguments were not expected: quat --rep (see keyrot compare --help)" -- \
+expect_error "compare --rep" "keyrot: compare: The following argument was not expected: --rep (see keyrot compare --help)" -- \
     "$keyrot" compare walk.csv walk.csv --rep quat
 expect "compare -o" 0 "22 rows compared, 0 failed" -- bash -c "'$keyrot' compare walk10.csv walk10.csv -o summary.txt && cut -d';' -f1 summary.txt"
 
 # ---- messages in the user's words
-expect_error "ACTUAL missing" "keyrot: compare: ACTUAL is missing: expected two files, EXPECTED ACTUAL (see keyrot compare --help)" -- \
+expect_error "ANSWER missing" "keyrot: compare: ANSWER is missing: expected the key, then one answer or more (see keyrot compare --help)" -- \
     "$keyrot" compare key.csv
 expect_error "unknown command" "keyrot: unknown command 'interp': expected resample, convert, slerp, compare, info or reduce (did you mean 'slerp'?)" -- \
     "$keyrot" interp x

@@ -2,7 +2,7 @@
 """keyrot's default outputs, as the tools people pair it with read them.
 
 Each command's output with no flags beyond the format (resample, convert,
-slerp and reduce, in CSV and in NDJSON; compare's JSON report) goes to
+slerp and reduce, in CSV and in NDJSON; compare's reports and grade table) goes to
 pandas (read_csv, read_json(lines=True)), Python's csv module, Miller
 (mlr --icsv), csvkit (csvjson), awk 'NR>1' and jq. Each reader must see the
 header as its columns and one row per frame or key: the row counts are
@@ -149,6 +149,15 @@ def main():
                             text=True).stdout
     rc, out, _ = tool(["jq", "-r", ".rows, (.entries | length), ([.entries[].pass] | all)"], report)
     check(rc == 0 and out.split() == ["5", "5", "true"], f"compare --report json through jq: {out.split()}")
+    report = subprocess.run([KEYROT, "compare", "key.csv", "answer.csv", "--report", "csv"], capture_output=True,
+                            text=True).stdout
+    csv_readers("compare --report csv", report, ["track", "frame", "time", "difference", "translation_difference",
+                                                 "scale_difference", "extra", "pass", "reason"], 5)
+    # the grade table of two answers
+    table = subprocess.run([KEYROT, "compare", "key.csv", "answer.csv", "key.csv", "--report", "csv"],
+                           capture_output=True, text=True).stdout
+    csv_readers("compare grade table", table, ["answer", "grade", "rows", "failed", "missing", "extra",
+                                               "max_difference", "track", "time", "reason"], 2)
 
     # Track names stay plain: a second joint of one name is '<name>.2', which
     # pandas reads as it is (a '#' would have been taken for a comment by

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "keyrot/compare.hpp"
 #include "keyrot/convert.hpp"
 #include "io/format.hpp"
 #include "io/layout.hpp"
@@ -52,7 +53,8 @@ struct options {
     // compare, reduce
     double tol_deg = 0.01;
     double tol_translation = 0.001;
-    bool report_json = false;
+    std::optional<format> report;  ///< --report csv|json
+    extra_rows extra = extra_rows::fail;  ///< compare --ignore-extra: allowed
 };
 
 /// Runs one command. Data goes to `out` (unless -o / --output-dir), warnings

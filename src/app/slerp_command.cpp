@@ -65,6 +65,12 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     if (o.ts.empty() && !o.steps) throw usage_error("slerp needs -t T or --steps N");
     // Each operand is its own source for messages: "keyrot: Q1: quaternion is zero: ...".
     warnings warn0(err, "Q0"), warn1(err, "Q1");
+    // t is a fraction of the way from Q0 to Q1: 25 is no percentage.
+    const auto outside = std::find_if(o.ts.begin(), o.ts.end(), [](double h) { return h < 0 || h > 1; });
+    if (outside != o.ts.end())
+        print_error(err, fmt::format("warning: -t {} is outside [0, 1]: {} extrapolates beyond Q0 and Q1 (t is a "
+                                     "fraction of the way, not a percentage)",
+                                     *outside, to_string(how)));
     const track t{"", o.euler, {make_key(operand("Q0", o.q0, o, 0), settings_of(o), warn0),
                                 make_key(operand("Q1", o.q1, o, 1), settings_of(o), warn1)},
                     std::nullopt};

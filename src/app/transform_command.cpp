@@ -607,7 +607,7 @@ transform_plan plan_for(const options& o, const std::string& name, const input_s
         if (p.out == format::bvh)
             throw usage_error("reduce: BVH has a line for every frame, so it cannot drop keys: expected --to csv, "
                               "json, ndjson, gltf or glb, or -o with one of their extensions");
-        p.rows = std::make_unique<reduced_rows>(reducing(o), o.how.has_value(), o.report_json, src.source(),
+        p.rows = std::make_unique<reduced_rows>(reducing(o), o.how.has_value(), o.report == format::json, src.source(),
                                                 is_gltf(p.out));
     } else {
         p.rows = std::make_unique<key_rows>();

@@ -69,7 +69,16 @@ private:
     std::vector<std::size_t> without_frame_;
 };
 
-double rounding_of(const track& t) { return t.interpolation ? t.interpolation->time_rounding : 0; }
+/// The relative rounding of a track's times as stored: a glTF file's own,
+/// or that of 32-bit floats where every time is one (a glTF file's times
+/// written out as decimals, 32.06666564941406 for 32.0666...).
+double rounding_of(const track& t) {
+    const double stored = t.interpolation ? t.interpolation->time_rounding : 0;
+    const bool float32 = std::all_of(t.keys.begin(), t.keys.end(), [](const key& k) {
+        return static_cast<double>(static_cast<float>(k.time)) == k.time;
+    });
+    return std::max(stored, float32 ? 0x1p-24 : 0.0);
+}
 
 /// The rate a track's frame numbers count at, and whether the frames'
 /// own times imply it (then as precisely as those times were written).
@@ -104,14 +113,15 @@ bool same_frames(const track& e, const track& a) {
 }
 
 row_difference unmatched(const track& t, const key& k, const char* problem) {
-    return {t.name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, problem};
+    return {t.name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, problem, false};
 }
 
 }  // namespace
 
 double counted_rate(const track& t) { return rate_of(t).rate; }
 
-comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual, const tolerances& tol) {
+comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual, const tolerances& tol,
+                          extra_rows extra) {
     comparison out;
     std::vector<std::vector<bool>> used(actual.size());
     std::unordered_map<std::string_view, const track*> by_name;  // (names are unique within a file)
@@ -139,13 +149,15 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
             const auto j = finder ? finder->find(k) : std::nullopt;
             if (!j) {
                 out.rows.push_back(unmatched(e, k, "missing from ACTUAL"));
+                ++out.missing;
                 continue;
             }
+            ++out.matched;
             used[static_cast<std::size_t>(a - actual.data())][*j] = true;
             const key& other = a->keys[*j];
             row_difference r{e.name, k.frame, k.time, from_radians(geodesic_angle(k.rotation, other.rotation),
                                                                    angle_unit::degrees),
-                             std::nullopt, std::nullopt, ""};
+                             std::nullopt, std::nullopt, "", false};
             if (*r.angle_deg > tol.rotation_deg)
                 r.problem = fmt::format("rotation differs by {:.6g} deg (tolerance {:g})", *r.angle_deg, tol.rotation_deg);
             const auto vector = [&](const std::optional<vec3>& e_value, const std::optional<vec3>& a_value,
@@ -171,7 +183,12 @@ comparison compare_tracks(const std::vector<track>& expected, const std::vector<
         if (!in_expected.contains(a.name)) out.extra_tracks.push_back(a.name);
     for (std::size_t i = 0; i < actual.size(); ++i)
         for (std::size_t j = 0; j < actual[i].keys.size(); ++j)
-            if (!used[i][j]) out.rows.push_back(unmatched(actual[i], actual[i].keys[j], "only in ACTUAL"));
+            if (!used[i][j]) {
+                row_difference r = unmatched(actual[i], actual[i].keys[j], extra == extra_rows::fail ? "only in ACTUAL" : "");
+                r.extra = true;
+                out.rows.push_back(std::move(r));
+                ++out.extra;
+            }
     out.failed = static_cast<std::size_t>(std::count_if(out.rows.begin(), out.rows.end(), [](const auto& r) { return !r.pass(); }));
     return out;
 }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "keyrot/tolerances.hpp"
 
@@ -115,6 +116,14 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     }
     if (!std::isfinite(out.time))
         throw input_error(where(source, k.at), fmt::format("time {} is out of range: expected a finite time", out.time));
+    if (s.angles == angle_unit::radians && (k.kind == rep::axis_angle || k.kind == rep::rotvec)) {
+        // An angle of more than two turns is no one's radians: degrees, read as radians.
+        const double angle = k.kind == rep::axis_angle ? std::fabs(v[3]) : norm(vec3{v[0], v[1], v[2]});
+        if (angle > 4 * std::numbers::pi)
+            warn.once("radians", fmt::format("an angle of {:.6g} read as radians is {:.3g} turns ({}): if the file "
+                                             "is in degrees, read it as degrees (without --radians)",
+                                             angle, angle / (2 * std::numbers::pi), where(source, k.at)));
+    }
     return out;
 }
 

@@ -27,7 +27,7 @@ _keyrot() {
         resample) flags="--output-dir --jobs $input $output $interpolation --fps --max-frames" ;;
         convert) flags="--output-dir --jobs $input $output" ;;
         slerp) flags="-t --steps --max-frames --from-rep $interpolation $output" ;;
-        compare) flags="--tol --tol-translation --report -o --output --fsync $input $conventions" ;;
+        compare) flags="--tol --tol-translation --ignore-extra --report -o --output --fsync $input $conventions" ;;
         info) flags="-o --output --fsync --to --precision $input $conventions" ;;
         reduce) flags="--output-dir --jobs $input $output $interpolation --tol --tol-translation --report" ;;
         help) flags="" ;;
@@ -45,7 +45,7 @@ _keyrot() {
         --method) values="slerp nlerp squad step euler" ;;
         --path) values="shortest direct" ;;
         --quat-order) values="wxyz xyzw" ;;
-        --report) values="json" ;;
+        --report) [[ $command == compare ]] && values="csv json" || values="json" ;;
         --settings-line) values="needed always never" ;;
         --euler | --out-euler) values=$euler ;;
         -o | --output)

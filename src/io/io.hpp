@@ -116,6 +116,10 @@ public:
     virtual void finish() = 0;
 };
 
+/// Appends `text` as a CSV cell: as it is, or quoted ("hip, left") where it
+/// would otherwise read back as something else.
+void append_csv_cell(std::string& out, std::string_view text);
+
 /// `text` as a JSON string literal, quotes included. Throws input_error for invalid UTF-8.
 std::string json_quote(std::string_view text);
 

@@ -386,9 +386,7 @@ std::unique_ptr<line_key_reader> make_csv_reader(std::istream& in, const read_op
     return std::make_unique<csv_reader>(in, opts, warn);
 }
 
-namespace {
-
-void append_cell_text(std::string& out, std::string_view text) {
+void append_csv_cell(std::string& out, std::string_view text) {
     // Quoted where it would otherwise read back as something else: a comma,
     // a quote, a line break, spaces at either end (trimmed), a leading '#'
     // (a comment line, in the first column).
@@ -403,6 +401,8 @@ void append_cell_text(std::string& out, std::string_view text) {
     }
     out += '"';
 }
+
+namespace {
 
 class csv_writer final : public table_writer {
 public:
@@ -438,7 +438,7 @@ public:
     void begin_track(const std::string& name, channels) override { name_ = name; }
 
     void row(const sample& s) override {
-        if (info_.named) append_cell_text(out_, name_), out_ += ',';
+        if (info_.named) append_csv_cell(out_, name_), out_ += ',';
         row_text text(out_);
         bool first = true;
         const auto cell = [&](double v, std::optional<int> precision) {
