@@ -15,7 +15,7 @@ expected are known before keyrot runs:
 - one answer keeps its summary line; --report json of an unreadable answer
   is still a JSON document with an `error` member;
 - --ignore-extra, float32 times, messages naming the right file, slerp -t
-  outside [0, 1], --radians on degrees, and the flag messages.
+  outside [0, 1], --radians on degrees, UTF-16 files, and the flag messages.
 
 Usage: grading_test.py KEYROT. Exit 0 when all pass, 1 otherwise.
 """
@@ -184,6 +184,16 @@ with tempfile.TemporaryDirectory() as d:
     check("read as radians" in r.stderr, "--radians on degrees: a warning")
     r = keyrot("info", "deg.csv", cwd=d)
     check("radians" not in r.stderr, "degrees read as degrees: no warning")
+
+    # A spreadsheet's "Unicode Text" (UTF-16, with or without a byte-order mark) is named as such.
+    for name, text, encoding in (("u16.csv", "time\tqw\tqx\tqy\tqz\n0\t1\t0\t0\t0\n", "utf-16"),
+                                 ("u16le.csv", "time,qw,qx,qy,qz\n0,1,0,0,0\n", "utf-16-le"),
+                                 ("u16.json", '{"keys": [{"time": 0, "quat": [1, 0, 0, 0]}]}', "utf-16")):
+        with open(os.path.join(d, name), "w", encoding=encoding) as f:
+            f.write(text)
+        r = keyrot("compare", "key.csv", name, cwd=d)
+        check(r.returncode == 2 and "UTF-16" in r.stderr and "invalid UTF-8" not in r.stderr,
+              f"{name} ({encoding}): named UTF-16: {r.stderr.strip()}")
 
     # Flag messages name the flag.
     r = keyrot("compare", "key.csv", "right.csv", "--tolerance", "0.1", cwd=d)

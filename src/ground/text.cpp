@@ -25,6 +25,16 @@ bool has_control_characters(std::string_view text) noexcept {
     return false;
 }
 
+bool looks_like_utf16(std::string_view start) noexcept {
+    // (ASCII in UTF-16 is a NUL and a letter, in one order or the other)
+    return start.starts_with("\xFF\xFE") || start.starts_with("\xFE\xFF") ||
+           (start.size() >= 2 && (start[0] == '\0') != (start[1] == '\0'));
+}
+
+const char* const utf16_message =
+    "UTF-16 text (a spreadsheet's \"Unicode Text\", say): expected UTF-8: save it as UTF-8 (\"CSV UTF-8\"), or "
+    "convert it with iconv -f UTF-16 -t UTF-8";
+
 std::string_view without_bom(std::string_view text) noexcept {
     return text.substr(0, 3) == "\xEF\xBB\xBF" ? text.substr(3) : text;
 }

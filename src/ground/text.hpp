@@ -14,6 +14,14 @@ bool is_valid_utf8(std::string_view text) noexcept;
 /// True if `text` has control characters (below 0x20, or 0x7f).
 bool has_control_characters(std::string_view text) noexcept;
 
+/// Whether `start`, the beginning of a file that is not UTF-8, is UTF-16
+/// (a spreadsheet's "Unicode Text"): a UTF-16 byte-order mark, or a
+/// character and a NUL byte (which no text keyrot reads holds), in either
+/// order.
+bool looks_like_utf16(std::string_view start) noexcept;
+/// What keyrot says of a UTF-16 file: "UTF-16 text (...): expected UTF-8 ...".
+extern const char* const utf16_message;
+
 /// `text` without a leading UTF-8 byte-order mark.
 std::string_view without_bom(std::string_view text) noexcept;
 /// `text` without leading and trailing spaces and tabs.

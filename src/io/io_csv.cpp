@@ -177,7 +177,9 @@ bool empty_cell(const std::vector<std::string_view>& cells, std::size_t at) { re
 bool skipped(std::string_view line, const std::string& source, std::size_t number) {
     const std::string_view content = trim(line);
     if (content.empty() || content.front() == '#') return true;
-    if (!is_valid_utf8(line)) throw input_error(fmt::format("{}:{}", source, number), "invalid UTF-8: expected text");
+    if (!is_valid_utf8(line))
+        throw input_error(fmt::format("{}:{}", source, number),
+                          number == 1 && looks_like_utf16(line) ? utf16_message : "invalid UTF-8: expected text");
     return false;
 }
 
@@ -319,6 +321,7 @@ public:
                 return;
             }
             const std::string where = fmt::format("{}:{}", source, lines_.number());
+            if (looks_like_utf16(line)) throw input_error(where, utf16_message);  // (no byte-order mark)
             if (const char c = trim(line).front(); c == '{' || c == '[')
                 throw input_error(where, fmt::format("expected a CSV header, got what looks like JSON ('{}'): "
                                                      "--from json or --from ndjson reads it as such",

@@ -132,6 +132,7 @@ json parse_json_text(std::string_view text, std::string_view source, std::size_t
     try {
         return json::parse(text.begin(), text.end(), unique_names(source));
     } catch (const json::parse_error& e) {
+        if (first_line == 1 && looks_like_utf16(text.substr(0, 4))) throw input_error(std::string(source), utf16_message);
         std::string what = e.what();
         // "[json.exception.parse_error.101] parse error at line 1, column 5: ..." -> the part after ": "
         const auto colon = what.find(": ");
