@@ -195,6 +195,9 @@ expect "1e-400 in CSV and JSON alike" 0 "0,1,0,0,0
 # ---- every flag a command lists does what it says
 expect "info -o info.json writes JSON" 0 "walk.csv 2" -- bash -c \
     "'$keyrot' info walk.csv -o info.json && /usr/bin/env python3 -c 'import json; d = json.load(open(\"info.json\")); print(d[\"source\"], len(d[\"tracks\"]))'"
+# (arm_wave's samplers: shoulder's rotation and translation LINEAR, the wrist's rotation STEP)
+expect "info names each channel as played" 0 "  interpolation: rotation slerp, translation linear
+  interpolation: rotation step" -- bash -c "'$keyrot' info '$data/arm_wave.gltf' | grep -E '^  interpolation: (rotation slerp, translation|rotation step)'"
 expect_error "info --to csv" "keyrot: info: --to: csv not in {json} (see keyrot info --help)" -- "$keyrot" info walk.csv --to csv
 expect_error "compare --rep" "keyrot: compare: The following argument was not expected: --rep (see keyrot compare --help)" -- \
     "$keyrot" compare walk.csv walk.csv --rep quat

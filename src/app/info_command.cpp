@@ -27,15 +27,18 @@ std::string rep_list(const std::vector<rep>& reps) {
     return fmt::format("{}", fmt::join(names, ", "));
 }
 
-/// How a track's file says its channels are interpolated ("slerp" for a
-/// glTF LINEAR sampler, as --method names it): {"rotation", "slerp"}, ...
+/// How a track's file says its channels are played: a glTF LINEAR sampler
+/// is "slerp" for a rotation (as --method names it) and "linear" for a
+/// translation or scale: {"rotation", "slerp"}, {"translation", "linear"}.
 std::vector<std::pair<std::string_view, std::string_view>> interpolations(const track& t) {
     const track_interpolation& i = *t.interpolation;
     channels carried;
     for (const key& k : t.keys) carried |= channels_of(k);
+    // A vector channel "played by slerp" moves in a straight line: linear.
+    const auto vector = [](method how) { return how == method::slerp ? std::string_view("linear") : to_string(how); };
     std::vector<std::pair<std::string_view, std::string_view>> out{{"rotation", to_string(i.rotation)}};
-    if (carried.translation) out.emplace_back("translation", to_string(i.translation));
-    if (carried.scale) out.emplace_back("scale", to_string(i.scale));
+    if (carried.translation) out.emplace_back("translation", vector(i.translation));
+    if (carried.scale) out.emplace_back("scale", vector(i.scale));
     return out;
 }
 
