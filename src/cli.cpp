@@ -303,10 +303,15 @@ void define_info(CLI::App& sub, options& o, raw_flags& f) {
     add_fsync_flag(sub, o);
     sub.add_option("--to", f.to, "json: a JSON description instead of text")->check(CLI::IsMember({"json"}));
     sub.add_option("--precision", f.precision, "digits after the decimal point in the text (default 6)");
+    sub.add_flag("--segments", o.segments, "every segment's angle and speed, not only the largest (holds them all)");
     add_input_flags(sub, o, f);
     add_convention_flags(sub, o, f);
-    sub.footer(R"(Examples:
+    sub.footer(R"(A summary of each track: its keys, span and spacing, its largest step between keys, and the keys
+to look at (flipped, renormalised, near gimbal lock). --segments adds a line per segment.
+
+Examples:
   keyrot info walk.csv
+  keyrot info wide_turn.csv --segments
   keyrot info homework.json head_turn.json --to json)");
 }
 
@@ -322,7 +327,7 @@ constexpr std::array<command_definition, 6> commands = {{
     {"convert", "rewrite keys in another representation, no resampling", command::convert, define_convert},
     {"slerp", "interpolate between two rotations (worked examples, homework)", command::slerp, define_slerp},
     {"compare", "grade an answer: per-frame rotation difference", command::compare, define_compare},
-    {"info", "describe a track: keys, duration, per-segment angles, warnings", command::info, define_info},
+    {"info", "describe a track: keys, span, largest step, warnings", command::info, define_info},
     {"reduce", "the fewest input keys that replay within a tolerance", command::reduce, define_reduce},
 }};
 

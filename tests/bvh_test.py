@@ -31,6 +31,8 @@ import subprocess
 import sys
 import tempfile
 
+from peak import peak_kb
+
 try:
     import numpy as np
     from scipy.spatial.transform import Rotation
@@ -407,25 +409,6 @@ def check_bad(work):
         ok(f"{bad_ok} bad inputs: one line naming file:line, exit 2, nothing written")
 
 
-# A child's peak memory counts what it was forked from: keyrot is started
-# from a bare Python, not from this one with numpy loaded.
-PEAK = ("import os, sys\n"
-        "pid = os.posix_spawn(sys.argv[1], sys.argv[1:], os.environ,\n"
-        "                     file_actions=[(os.POSIX_SPAWN_OPEN, 1, os.devnull, os.O_WRONLY, 0)])\n"
-        "_, status, usage = os.wait4(pid, 0)\n"
-        "print(os.waitstatus_to_exitcode(status), usage.ru_maxrss)\n")
-
-
-def peak_kb(args):
-    """Status and peak resident memory (KB) of keyrot run with `args`."""
-    # (AddressSanitizer holds freed memory back to catch its reuse: not here.)
-    asan = ":".join(filter(None, [os.environ.get("ASAN_OPTIONS"), "quarantine_size_mb=0"]))
-    out = subprocess.run([sys.executable, "-S", "-c", PEAK, KEYROT] + args, capture_output=True, check=True,
-                         env=dict(os.environ, ASAN_OPTIONS=asan))
-    status, kb = out.stdout.split()
-    return int(status), int(kb)
-
-
 def check_memory(work):
     """BVH to BVH streams: a take 100 times longer needs about the same memory."""
     header = ("HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation "
@@ -439,7 +422,7 @@ def check_memory(work):
             line = " ".join(["1.25", "-2.5", "3.75", "10.5", "-20.25", "30.125", "40.5", "-50.25", "60.125"]) + "\n"
             f.write(line * frames)
         for args in (["resample", path, "--fps", "24", "-o", path + ".24.bvh"], ["resample", path, "--fps", "24"]):
-            status, kb = peak_kb(args)
+            status, kb = peak_kb(KEYROT, args)
             if status != 0:
                 fail(f"{' '.join(args)}: status {status}")
             peaks.append(kb)

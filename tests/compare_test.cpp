@@ -31,7 +31,7 @@ TEST_CASE("q and -q are the same answer") {
     const auto c = compare_tracks({named("", {at(0, a), at(1, b)})}, {named("", {at(0, -a), at(1, -b)})}, {});
     CHECK(c.failed == 0);
     CHECK(c.rows.size() == 2);
-    CHECK(*c.rows[*c.worst].angle_deg <= 1e-6);
+    CHECK(*c.worst->angle_deg <= 1e-6);
 }
 
 TEST_CASE("an answer half a degree off at one frame fails there") {
@@ -40,8 +40,8 @@ TEST_CASE("an answer half a degree off at one frame fails there") {
                                   {named("", {at(0, quat{}, 0), at(0.5, off, 12)})}, {});
     CHECK(c.failed == 1);
     REQUIRE(c.worst);
-    CHECK(*c.rows[*c.worst].frame == 12);
-    CHECK(std::fabs(*c.rows[*c.worst].angle_deg - 0.5) <= 1e-12);
+    CHECK(*c.worst->frame == 12);
+    CHECK(std::fabs(*c.worst->angle_deg - 0.5) <= 1e-12);
     CHECK(c.rows[1].problem == "rotation differs by 0.5 deg (tolerance 0.01)");
     const auto loose = compare_tracks({named("", {at(0.5, quat{}, 12)})}, {named("", {at(0.5, off, 12)})}, {1, 0.001});
     CHECK(loose.failed == 0);
@@ -114,12 +114,12 @@ TEST_CASE("tracks are matched by name; translations are checked when expected") 
     CHECK(reordered.rows.size() == 2);
 }
 
-TEST_CASE("each key matches the first key a scan of ACTUAL would find") {
-    // The reference is the plain scan: the first key of ACTUAL with the same
-    // frame when both have one, else within 1e-6 s. Times 0.4 to 3 us apart
-    // and small frame numbers make near misses, exact 1e-6 steps and
-    // repeated frames common; each ACTUAL key has its own angle, so a row's
-    // angle tells which key it matched.
+TEST_CASE("each key matches the key a scan of ACTUAL would find") {
+    // The reference is the plain scan: the key of ACTUAL with the same frame
+    // when both have one, else within 1e-6 s. Keys lie near a 24 fps grid,
+    // some by frame number alone, some by a time up to 3 us off the grid,
+    // so near misses and exact 1e-6 steps are common; each ACTUAL key has
+    // its own angle, so a row's angle tells which key it matched.
     const auto scan = [](const std::vector<key>& keys, const key& k) -> std::optional<std::size_t> {
         for (std::size_t i = 0; i < keys.size(); ++i) {
             const key& other = keys[i];
@@ -128,16 +128,19 @@ TEST_CASE("each key matches the first key a scan of ACTUAL would find") {
         return std::nullopt;
     };
     std::mt19937 gen(7);
-    std::uniform_int_distribution<int> step(0, 3), frame(0, 40), coin(0, 1);
+    std::uniform_int_distribution<int> gap(1, 2), jitter(-3, 3), coin(0, 1);
     const auto random_keys = [&](bool distinct_angles) {
         std::vector<key> keys;
-        double time = 0;
+        int f = 0;
         for (int i = 0; i < 80; ++i) {
-            const int s = step(gen);
-            time += s == 0 ? 0.4e-6 : s * 1e-6;
+            f += gap(gen);
             const quat q = distinct_angles ? exp(vec3{0, 0, 1e-3 * (i + 1)}) : quat{};
-            keys.push_back(at(time, q, coin(gen) ? std::optional<double>(frame(gen)) : std::nullopt));
-            keys.back().has_time = !keys.back().frame;  // frames counted at the rate stated, as a scan takes them
+            if (coin(gen)) {
+                keys.push_back(at(f / 24.0, q, f));  // a frame counted at the default rate
+                keys.back().has_time = false;
+            } else {
+                keys.push_back(at(f / 24.0 + jitter(gen) * 1e-6, q));
+            }
         }
         return keys;
     };
@@ -146,19 +149,29 @@ TEST_CASE("each key matches the first key a scan of ACTUAL would find") {
         const std::vector<key> expected = random_keys(false), actual = random_keys(true);
         const auto c = compare_tracks({named("", expected)}, {named("", actual)}, {1e9, 1});
         std::vector<bool> used(actual.size());
+        std::size_t row = 0;
         for (std::size_t i = 0; i < expected.size(); ++i) {
             CAPTURE(round);
             CAPTURE(i);
             const auto j = scan(actual, expected[i]);
-            REQUIRE(c.rows[i].angle_deg.has_value() == j.has_value());
-            if (!j) continue;
-            used[*j] = true;
-            ++matched;
-            CHECK(*c.rows[i].angle_deg == from_radians(geodesic_angle(quat{}, actual[*j].rotation), angle_unit::degrees));
+            // the rows come in time order: the expected key's, after ACTUAL's own before it
+            while (row < c.rows.size() && c.rows[row].extra) ++row;
+            REQUIRE(row < c.rows.size());
+            CHECK(c.rows[row].time == expected[i].time);
+            REQUIRE(c.rows[row].angle_deg.has_value() == j.has_value());
+            if (j) {
+                used[*j] = true;
+                ++matched;
+                CHECK(*c.rows[row].angle_deg ==
+                      from_radians(geodesic_angle(quat{}, actual[*j].rotation), angle_unit::degrees));
+            }
+            ++row;
         }
         const auto only_in_actual = static_cast<std::size_t>(std::count(used.begin(), used.end(), false));
         CHECK(c.rows.size() == expected.size() + only_in_actual);
+        CHECK(c.extra == only_in_actual);
         unmatched_rows += c.rows.size() - expected.size();
+        CHECK(std::is_sorted(c.rows.begin(), c.rows.end(), [](const auto& a, const auto& b) { return a.time < b.time; }));
     }
     CHECK(matched > 1000);  // the cases are not all misses
     CHECK(unmatched_rows > 1000);

@@ -32,7 +32,17 @@ TEST_CASE("segments, flips, renormalised and near-gimbal keys") {
     CHECK(std::fabs(info.segments[0].speed_deg_s - 180) <= 1e-12);
     CHECK(info.segments[0].direct_long_way);
     CHECK(std::fabs(info.segments[1].angle_deg - 90) <= 1e-12);
-    CHECK(info.flipped == std::vector<std::size_t>{1});
-    CHECK(info.renormalised == std::vector<std::size_t>{2});
-    CHECK(info.near_gimbal == std::vector<std::size_t>{3});  // 0.57 degrees from lock
+    CHECK(info.flipped.first == std::vector<std::size_t>{1});
+    CHECK(info.renormalised.first == std::vector<std::size_t>{2});
+    CHECK(info.near_gimbal.first == std::vector<std::size_t>{3});  // 0.57 degrees from lock
+    // the summary: the largest of the segments, and the gaps between keys
+    REQUIRE(info.largest);
+    // 180 about z to z 0.3 then y (pi/2 - 0.01): cos(angle/2) = their dot, sin(0.15) cos((pi/2 - 0.01) / 2)
+    const double last = 2 * std::acos(std::sin(0.15) * std::cos((std::numbers::pi / 2 - 0.01) / 2)) * 180 / std::numbers::pi;
+    CHECK(std::fabs(info.largest->angle_deg - last) <= 1e-9);
+    CHECK(info.largest_from == 2);
+    CHECK(std::fabs(info.segments[2].angle_deg - last) <= 1e-9);
+    CHECK(info.shortest_gap == 0.5);
+    CHECK(info.longest_gap == 1);
+    CHECK(!info.even());
 }

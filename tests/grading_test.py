@@ -14,6 +14,8 @@ expected are known before keyrot runs:
   1.01 times the tolerance off;
 - one answer keeps its summary line; --report json of an unreadable answer
   is still a JSON document with an `error` member;
+- compare and info of a million rows in the memory of a hundred thousand, and
+  files of two layouts (track after track, rows interleaved) compared;
 - --ignore-extra, float32 times, messages naming the right file, slerp -t
   outside [0, 1], --radians on degrees, UTF-16 files, and the flag messages.
 
@@ -28,6 +30,8 @@ import struct
 import subprocess
 import sys
 import tempfile
+
+from peak import peak_kb
 
 KEYROT = os.path.abspath(sys.argv[1])
 failures = 0
@@ -202,6 +206,53 @@ with tempfile.TemporaryDirectory() as d:
     check(r.returncode == 2 and "--fps" in r.stderr and "right.csv" not in r.stderr, f"compare --fps names the flag: {r.stderr.strip()}")
     r = keyrot("compare", "key.csv", "right.csv", "--tol", "0.1km", cwd=d)
     check(r.returncode == 2 and "0.1deg" in r.stderr, f"--tol 0.1km says how to write an angle: {r.stderr.strip()}")
+
+
+def turn_rows(path, n, off_at=None):
+    """n frames at 24 fps of a turn about z, 0.001 degrees a frame; frame `off_at` 0.5 degrees further."""
+    with open(path, "w") as f:
+        f.write("frame,time,ax,ay,az,angle\n")
+        f.writelines(f"{i},{i / 24!r},0,0,1,{i * 0.001 + (0.5 if i == off_at else 0)!r}\n" for i in range(n))
+
+
+# compare and info read a key at a time: a million rows take no more memory
+# than a hundred thousand (by then the reading threads' queues are full),
+# and at most 16 MB (unless a hundred thousand rows already take more: an
+# AddressSanitizer build's floor).
+with tempfile.TemporaryDirectory() as d:
+    for n in (100000, 1000000):
+        turn_rows(os.path.join(d, f"key{n}.csv"), n)
+        turn_rows(os.path.join(d, f"answer{n}.csv"), n, off_at=n // 2)
+    n = 1000000
+    r = keyrot("compare", "key1000000.csv", "answer1000000.csv", cwd=d)
+    check(r.returncode == 1 and r.stdout == "1000000 rows compared, 1 failed; largest difference 0.5 deg at frame "
+          f"500000 ({500000 / 24!r} s)\n", f"compare of 1M rows: {r.stdout.strip()}")
+    r = keyrot("info", "answer1000000.csv", cwd=d)
+    check("  spacing: every 0.041667 s (24 keys/s)\n  largest step: 0.501 deg, keys 499999 to 500000 "
+          "(20833.291667 s to 20833.333333 s), 12.024 deg/s\n" in r.stdout, f"info of 1M rows: {r.stdout.strip()}")
+    runs = {"compare": ["compare", "key{}.csv", "answer{}.csv"],
+            "compare --report csv": ["compare", "key{}.csv", "answer{}.csv", "--report", "csv"],
+            "compare --report json": ["compare", "key{}.csv", "answer{}.csv", "--report", "json"],
+            "info": ["info", "answer{}.csv"]}
+    for what, args in runs.items():
+        peaks = [peak_kb(KEYROT, [a.format(n) for a in args], cwd=d) for n in (100000, 1000000)]
+        (_, small), (status, big) = peaks
+        bounded = big <= small + 2048 and (small > 16384 or big <= 16384)
+        check(status in (0, 1) and bounded, f"{what}: {small} KB for 100,000 rows, {big} KB for 1,000,000")
+
+    # Files of two layouts: the key track after track, the answer's rows
+    # interleaved (hip, knee, hip, ...), knee's frame 150 off by 0.5 degrees.
+    def rows(track, f, off=0.0):
+        return f"{track},{f},{f / 24!r},0,0,1,{f * 0.25 + off!r}\n"
+    header = "track,frame,time,ax,ay,az,angle\n"
+    write(os.path.join(d, "grouped.csv"), header + "".join(rows(t, f) for t in ("hip", "knee") for f in range(200)))
+    write(os.path.join(d, "interleaved.csv"),
+          header + "".join(rows(t, f, 0.5 if (t, f) == ("knee", 150) else 0) for f in range(200) for t in ("hip", "knee")))
+    for key, answer in (("grouped.csv", "interleaved.csv"), ("interleaved.csv", "grouped.csv")):
+        r = keyrot("compare", key, answer, cwd=d)
+        check(r.returncode == 1 and r.stdout.startswith("400 rows compared, 1 failed; largest difference 0.5 deg at "
+                                                         "track knee frame 150"),
+              f"compare {key} {answer}: {r.stdout.strip()}")
 
 print("all grading checks passed" if not failures else f"{failures} grading checks failed")
 sys.exit(1 if failures else 0)

@@ -1,7 +1,11 @@
 #pragma once
-// Grading: match two sets of tracks row by row and measure the differences.
+// Grading: match two sets of tracks row by row and measure the differences,
+// whole (compare_tracks) or as the keys are read (comparer).
+#include <deque>
+#include <functional>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -32,13 +36,50 @@ struct row_difference {
 /// are graded).
 enum class extra_rows { fail, allowed };
 
-struct comparison {
-    std::vector<row_difference> rows;  ///< EXPECTED's order, then ACTUAL's unmatched rows
+/// What matching needs to know of a whole track before its rows are
+/// matched, learnt key by key (a first pass over a file): the rate its
+/// frame numbers count at, and how precisely its times were stored.
+class track_survey {
+public:
+    /// `key_fps`: the rate its file states; `time_rounding`: the relative
+    /// rounding of its times as stored (track_interpolation::time_rounding).
+    explicit track_survey(std::string name, std::optional<double> key_fps = std::nullopt, double time_rounding = 0);
+    /// The survey of a track held whole.
+    explicit track_survey(const track& t);
+    void add(const key& k);
+
+    const std::string& name() const noexcept { return name_; }
+    std::size_t keys() const noexcept { return keys_; }
+    bool any_frame() const noexcept { return any_frame_; }
+    /// As counted_rate(track).
+    double counted_rate() const;
+    /// Whether counted_rate is implied by frames that carry their times.
+    bool rate_implied() const;
+    /// The largest frame number's magnitude.
+    double last_frame() const noexcept { return last_frame_; }
+    /// The relative rounding of its times as stored: its file's own, or
+    /// 2^-24 where every time is a 32-bit float.
+    double rounding() const;
+
+private:
+    std::string name_;
+    std::optional<double> key_fps_;
+    double stored_rounding_;
+    std::size_t keys_ = 0;
+    bool float32_ = true, any_frame_ = false, frame_without_time_ = false;
+    std::optional<std::pair<double, double>> timed_;  ///< the last key's (frame, time) that gives the rate
+    double last_frame_ = 0;
+};
+
+/// What a comparison found, row counts and all.
+struct comparison_summary {
+    std::size_t compared = 0;  ///< rows reported: matched, missing and extra
     std::size_t failed = 0;
     std::size_t matched = 0;  ///< rows in both files
     std::size_t missing = 0;  ///< rows of EXPECTED that ACTUAL has not
     std::size_t extra = 0;    ///< rows of ACTUAL that EXPECTED has not
-    std::optional<std::size_t> worst;  ///< index of the largest angle among matched rows
+    std::optional<row_difference> worst;          ///< the matched row of the largest angle (the first of equals)
+    std::optional<row_difference> first_failure;  ///< the first failing row reported
     std::vector<std::string> missing_tracks;  ///< EXPECTED's tracks that ACTUAL has not (their rows are missing)
     std::vector<std::string> extra_tracks;    ///< ACTUAL's tracks that EXPECTED has not
     /// The first pair of tracks whose frames count at two rates (EXPECTED's,
@@ -46,20 +87,68 @@ struct comparison {
     std::optional<std::pair<double, double>> frame_rates;
 };
 
-/// The rate a track's frame numbers count at: for frames that carry their
-/// time as well (keyrot's own resampled frames, which state no rate), the
-/// rate those imply; otherwise the rate stated, or default_key_fps.
-double counted_rate(const track& t);
-
+/// Matches the keys of two files as they are read, holding only the keys
+/// that wait for the other file to reach their time, and hands each row
+/// to a sink as it is settled: in time order within a track.
+///
 /// Rows are matched by track name and frame when both keys have a frame and
 /// both tracks' frame numbers name the same moments (the same stated rate,
 /// or, where counted_rate is implied by times, grids that stay within half
 /// a frame of each other), else by track and time (|dt| <= tol::match_time,
 /// or either track's time rounding as stored where that is more:
-/// track_interpolation::time_rounding, or 2^-24 of the time for a track
-/// whose every time is a 32-bit float, as a glTF file's are, even when
-/// written out as a decimal). A track and its negation (every q as -q)
+/// track_survey::rounding). A track and its negation (every q as -q)
 /// compare equal: every angle_deg 0, failed 0.
+class comparer {
+public:
+    using row_sink = std::function<void(const row_difference&)>;
+    /// The surveys of both files' tracks (in file order), taken before.
+    comparer(const std::vector<track_survey>& expected, const std::vector<track_survey>& actual, const tolerances& tol,
+             extra_rows extra, row_sink row);
+    /// A key of EXPECTED's (or ACTUAL's) track `track`: within a track,
+    /// times strictly increase.
+    void expected(const std::string& track, key k);
+    void actual(const std::string& track, key k);
+    /// How many keys of each file wait for the other file's.
+    std::size_t waiting_expected() const noexcept { return waiting_[0]; }
+    std::size_t waiting_actual() const noexcept { return waiting_[1]; }
+    /// The tracks missing from either file and the frame rates are known
+    /// from the start; the counts grow as rows are settled.
+    const comparison_summary& summary() const noexcept { return summary_; }
+    /// Settles the keys still waiting (no key of the other file can match them).
+    const comparison_summary& finish();
+
+private:
+    struct pairing {
+        bool in_expected = false, in_actual = false, by_frame = false;
+        double rounding = 0;
+        std::deque<key> waiting[2];  ///< EXPECTED's, ACTUAL's
+    };
+    void add(int side, const std::string& track, key&& k);
+    void settle(const std::string& name, pairing& p);
+    void put(row_difference r);
+    row_difference matched(const std::string& name, const key& e, const key& a) const;
+    row_difference unmatched(const std::string& name, const key& k, int side) const;
+
+    tolerances tol_;
+    extra_rows extra_;
+    row_sink row_;
+    std::unordered_map<std::string, pairing> pairs_;
+    std::vector<std::string> order_;  ///< EXPECTED's tracks, then ACTUAL's own
+    std::size_t waiting_[2] = {0, 0};
+    comparison_summary summary_;
+};
+
+/// A comparison of tracks held whole, with every row.
+struct comparison : comparison_summary {
+    std::vector<row_difference> rows;  ///< track by track of EXPECTED, in time order; then ACTUAL's own tracks
+};
+
+/// The rate a track's frame numbers count at: for frames that carry their
+/// time as well (keyrot's own resampled frames, which state no rate), the
+/// rate those imply; otherwise the rate stated, or default_key_fps.
+double counted_rate(const track& t);
+
+/// The comparer's rows of two files held whole.
 comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual,
                           const tolerances& tol, extra_rows extra = extra_rows::fail);
 

@@ -55,6 +55,9 @@ struct options {
     double tol_translation = 0.001;
     std::optional<format> report;  ///< --report csv|json
     extra_rows extra = extra_rows::fail;  ///< compare --ignore-extra: allowed
+
+    // info
+    bool segments = false;  ///< --segments: every segment's angle and speed, not only the largest
 };
 
 /// Runs one command. Data goes to `out` (unless -o / --output-dir), warnings

@@ -1,19 +1,24 @@
 // compare: a key against one answer row by row, or against several as a
-// grade table, within tolerances, for grading.
+// grade table, within tolerances, for grading. The files are read as
+// compare_files reads them, a row at a time; reports are written as rows
+// are settled.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <exception>
 #include <ostream>
 #include <sstream>
+#include <thread>
 #include <string_view>
 #include <unordered_set>
 
 #include "app/commands.hpp"
+#include "app/compare_files.hpp"
 #include "app/plan.hpp"
-#include "io/document.hpp"
+#include "ground/thread_start.hpp"
 #include "io/io.hpp"
 #include "io/layout.hpp"
-#include "keyrot/compare.hpp"
 
 namespace keyrot::detail {
 
@@ -23,7 +28,7 @@ namespace {
 /// be read; and, where the answer fails as a whole, its likely cause.
 struct grade {
     std::string file;
-    std::optional<comparison> result;
+    std::optional<comparison_summary> result;
     std::string error;  ///< the answer could not be read
     std::string hint;
     bool pass() const { return result && result->failed == 0; }
@@ -38,19 +43,10 @@ std::string row_place(const row_difference& r, bool frame = true) {
     return place + fmt::format("time {} s", r.time);
 }
 
-std::string summary(const comparison& c) {
-    std::string s = fmt::format("{} rows compared, {} failed", c.rows.size(), c.failed);
-    if (c.worst) {
-        const row_difference& w = c.rows[*c.worst];
-        s += fmt::format("; largest difference {:.6g} deg at {}", *w.angle_deg, row_place(w));
-    }
+std::string summary(const comparison_summary& c) {
+    std::string s = fmt::format("{} rows compared, {} failed", c.compared, c.failed);
+    if (c.worst) s += fmt::format("; largest difference {:.6g} deg at {}", *c.worst->angle_deg, row_place(*c.worst));
     return s;
-}
-
-/// The first failing row of a comparison, for the grade table.
-const row_difference* first_failure(const comparison& c) {
-    const auto it = std::find_if(c.rows.begin(), c.rows.end(), [](const row_difference& r) { return !r.pass(); });
-    return it == c.rows.end() ? nullptr : &*it;
 }
 
 std::string number_text(std::optional<double> v) {
@@ -65,46 +61,225 @@ std::string json_number(std::optional<double> v) { return v ? number_text(v) : "
 /// A file name as a JSON string (a name that is not UTF-8 printed as \xNN).
 std::string json_name(std::string_view name) { return json_quote(printable(name)); }
 
-/// One answer's report: the summary's figures and one entry per row; or,
-/// for an answer that could not be read, why.
-std::string json_report(const grade& g, const tolerances& tol) {
-    std::string out = "{";
-    if (!g.result) return fmt::format("{{\"error\": {}, \"pass\": false}}\n", json_quote(g.error));
-    const comparison& c = *g.result;
-    out += fmt::format("\"rows\": {}, \"failed\": {}, \"missing\": {}, \"extra\": {}, \"tolerance\": {}, "
-                       "\"tolerance_translation\": {}, \"max_difference\": {}",
-                       c.rows.size(), c.failed, c.missing, c.extra, number_text(tol.rotation_deg),
-                       number_text(tol.translation), json_number(c.worst ? c.rows[*c.worst].angle_deg : std::nullopt));
-    if (!g.hint.empty()) out += ", \"hint\": " + json_quote(g.hint);
-    out += ", \"entries\": [";
-    for (std::size_t i = 0; i < c.rows.size(); ++i) {
-        const row_difference& r = c.rows[i];
-        out += i ? ",\n" : "\n";
-        out += fmt::format("{{\"track\": {}, \"frame\": {}, \"time\": {}, \"difference\": {}", json_quote(r.track),
-                           json_number(r.frame), number_text(r.time), json_number(r.angle_deg));
-        if (r.translation) out += ", \"translation_difference\": " + number_text(r.translation);
-        if (r.scale) out += ", \"scale_difference\": " + number_text(r.scale);
-        if (r.extra) out += ", \"extra\": true";
-        out += fmt::format(", \"pass\": {}", r.pass() ? "true" : "false");
-        if (!r.pass()) out += ", \"reason\": " + json_quote(r.problem);
-        out += '}';
-    }
-    out += "]}\n";
-    return out;
+std::optional<double> worst_angle(const comparison_summary& c) {
+    return c.worst ? c.worst->angle_deg : std::nullopt;
 }
 
-/// The same entries as CSV, a row each.
-std::string csv_report(const comparison& c) {
-    std::string out = "track,frame,time,difference,translation_difference,scale_difference,extra,pass,reason\n";
-    for (const row_difference& r : c.rows) {
-        append_csv_cell(out, r.track);
-        out += fmt::format(",{},{},{},{},{},{},{},", number_text(r.frame), number_text(r.time),
-                           number_text(r.angle_deg), number_text(r.translation), number_text(r.scale), r.extra,
-                           r.pass());
-        append_csv_cell(out, r.problem);
-        out += '\n';
+/// The answers keyrot looks at for a likely cause: no more keys than a
+/// homework file, as each reading of another way costs a reading of it.
+constexpr std::size_t hint_keys = 100000;
+
+/// Where rows are both missing and extra: a frame rate that could explain
+/// it. Where matched rows differ: another reading of the answer (degrees
+/// for radians or the reverse, the other quaternion order, another Euler
+/// sequence) under which every row passes.
+std::string likely_cause(const options& o, const input_source& key_src, const surveyed_file& key,
+                         const input_source& src, const surveyed_file& answer, const comparison_summary& c) {
+    if (c.missing > 0 && c.extra > 0 && (key.counted || answer.counted))
+        return fmt::format("rows missing and extra: frame numbers without times count at {} fps unless the file "
+                           "states a rate; --key-fps RATE reads them at another",
+                           o.key_fps.value_or(default_key_fps));
+    const bool some_differ = c.worst && *c.worst->angle_deg > o.tol_deg;
+    if (!some_differ || answer.keys > hint_keys) return "";
+    const auto& given = answer.given;
+    std::vector<std::pair<options, std::string>> readings;
+    if (given.contains(rep::axis_angle) || given.contains(rep::rotvec) || given.contains(rep::euler)) {
+        options other = o;
+        other.radians = !o.radians;
+        readings.emplace_back(other, o.radians ? "read as degrees (without --radians)" : "read as radians (--radians)");
     }
-    return out;
+    if (given.contains(rep::quat)) {
+        options other = o;
+        other.order = o.order == quat_order::wxyz ? quat_order::xyzw : quat_order::wxyz;
+        other.order_given = true;
+        readings.emplace_back(other, fmt::format("read with --quat-order {}", to_string(other.order)));
+    }
+    if (given.contains(rep::euler))
+        for (const std::string_view axes : {"ZYX", "XYZ", "ZXY", "YXZ", "XZY", "YZX", "ZXZ", "ZYZ", "XYX", "XZX",
+                                            "YXY", "YZY", "xyz", "zyx", "zxy", "yxz", "xzy", "yzx", "zxz", "zyz",
+                                            "xyx", "xzx", "yxy", "yzy"}) {
+            const euler_seq seq = *parse_euler_seq(axes);
+            if (answer.euler && seq.name == answer.euler->name) continue;
+            options other = o;
+            other.euler = seq;
+            readings.emplace_back(other, fmt::format("read with --euler {}", axes));
+        }
+    for (const auto& [other, how] : readings) {
+        try {
+            if (compare_files(o, key_src, key, other, src, answer, nullptr, nullptr).failed == 0)
+                return fmt::format("every row is within tolerance when the answer is {}", how);
+        } catch (const error&) {  // that reading is not a cause
+        }
+    }
+    return "";
+}
+
+/// An answer's first pass: its survey, or the error that stopped it.
+struct answer_survey {
+    std::optional<surveyed_file> file;
+    std::exception_ptr failed;
+};
+
+answer_survey survey_answer(const options& o, const input_source& src, warnings& warn) {
+    answer_survey s;
+    try {
+        s.file = survey_file(o, src, warn);
+    } catch (...) {
+        s.failed = std::current_exception();
+    }
+    return s;
+}
+
+/// Grades one answer, surveyed before, against the key; an answer that
+/// cannot be read is a grade, not the end of the run. `begin` and `row` as
+/// compare_files's.
+grade grade_answer(const options& o, const input_source& key_src, const surveyed_file& key, const input_source& src,
+                   const answer_survey& answer, const std::function<void(const comparison_summary&)>& begin = nullptr,
+                   const comparer::row_sink& row = nullptr) {
+    grade g{src.source(), std::nullopt, "", ""};
+    try {
+        if (answer.failed) std::rethrow_exception(answer.failed);
+        g.result = compare_files(o, key_src, key, o, src, *answer.file, begin, row);
+        if (!g.pass()) g.hint = likely_cause(o, key_src, key, src, *answer.file, *g.result);
+    } catch (const usage_error&) {
+        throw;
+    } catch (const error& e) {
+        g.error = e.what();
+    }
+    return g;
+}
+
+/// One answer's report, written as its rows are settled: its failing rows
+/// on stderr (each under the name of the file whose frame number it
+/// prints), then the summary; or, with --report, every row on stdout.
+class one_answer_report {
+public:
+    one_answer_report(const options& o, const std::string& key, const std::string& answer, std::ostream& out,
+                      std::ostream& err)
+        : o_(o), key_(key), answer_(answer), err_(err) {
+        if (o.report) to_.emplace(o, out);
+    }
+
+    /// What is known before the first row: frame rates, whole tracks missing.
+    void begin(const comparison_summary& c) {
+        frame_rates_ = c.frame_rates.has_value();
+        if (c.frame_rates)
+            print_error(err_, fmt::format("{} counts frames at {:.6g} fps, {} at {:.6g} fps: rows are matched by time",
+                                          key_, c.frame_rates->first, answer_, c.frame_rates->second));
+        // A track missing from either file is said once, not row by row.
+        for (const auto& [names, where] :
+             {std::pair(&c.missing_tracks, "missing from ACTUAL"), std::pair(&c.extra_tracks, "only in ACTUAL")}) {
+            for (const std::string& name : *names) {
+                if (whole_tracks_.size() < max_reasons)
+                    print_error(err_, fmt::format("{}: track '{}' {}", answer_, name, where));
+                whole_tracks_.insert(name);
+            }
+        }
+        if (whole_tracks_.size() > max_reasons)
+            print_error(err_, fmt::format("{}: {} more tracks missing from one file", answer_,
+                                          whole_tracks_.size() - max_reasons));
+        if (o_.report == format::csv)
+            to_->write("track,frame,time,difference,translation_difference,scale_difference,extra,pass,reason\n");
+        else if (o_.report == format::json)
+            to_->write("{\"entries\": [");
+    }
+
+    void row(const row_difference& r) {
+        if (o_.report == format::csv) return csv_row(r);
+        if (o_.report == format::json) return json_row(r);
+        if (r.pass() || whole_tracks_.contains(r.track)) return;
+        // A row missing from ACTUAL is at EXPECTED's frame; a matched row
+        // names its frame only where both files number frames alike.
+        const bool missing = !r.angle_deg && !r.extra;
+        const std::string place =
+            missing ? key_ + ": " + row_place(r) : answer_ + ": " + row_place(r, r.extra || !frame_rates_);
+        if (told_++ < max_reasons) print_error(err_, place + ": " + r.problem);
+    }
+
+    /// The summary, and the end of the report.
+    int finish(const grade& g, std::ostream& out) {
+        const comparison_summary& c = *g.result;
+        if (told_ > max_reasons) print_error(err_, fmt::format("{}: {} more rows failed", answer_, told_ - max_reasons));
+        const std::string line = summary(c) + (g.hint.empty() ? "" : "; " + g.hint) + "\n";
+        if (!o_.report) {
+            emit(o_, line, out);
+        } else {
+            if (o_.report == format::json) {
+                std::string end = fmt::format(
+                    "], \"rows\": {}, \"failed\": {}, \"missing\": {}, \"extra\": {}, \"tolerance\": {}, "
+                    "\"tolerance_translation\": {}, \"max_difference\": {}, \"pass\": {}",
+                    c.compared, c.failed, c.missing, c.extra, number_text(o_.tol_deg), number_text(o_.tol_translation),
+                    json_number(worst_angle(c)), g.pass());
+                if (!g.hint.empty()) end += ", \"hint\": " + json_quote(g.hint);
+                to_->write(end + "}\n");
+            }
+            to_->finish();
+            err_ << line;  // (standard output holds the report alone)
+        }
+        return c.failed ? 1 : 0;
+    }
+
+private:
+    void csv_row(const row_difference& r) {
+        std::string line;
+        append_csv_cell(line, r.track);
+        line += fmt::format(",{},{},{},{},{},{},{},", number_text(r.frame), number_text(r.time),
+                            number_text(r.angle_deg), number_text(r.translation), number_text(r.scale), r.extra,
+                            r.pass());
+        append_csv_cell(line, r.problem);
+        to_->write(line + '\n');
+    }
+    void json_row(const row_difference& r) {
+        std::string entry = fmt::format("{}{{\"track\": {}, \"frame\": {}, \"time\": {}, \"difference\": {}",
+                                        entries_++ ? ",\n" : "\n", json_quote(r.track), json_number(r.frame),
+                                        number_text(r.time), json_number(r.angle_deg));
+        if (r.translation) entry += ", \"translation_difference\": " + number_text(r.translation);
+        if (r.scale) entry += ", \"scale_difference\": " + number_text(r.scale);
+        if (r.extra) entry += ", \"extra\": true";
+        entry += fmt::format(", \"pass\": {}", r.pass());
+        if (!r.pass()) entry += ", \"reason\": " + json_quote(r.problem);
+        to_->write(entry + '}');
+    }
+
+    static constexpr std::size_t max_reasons = 10;
+    const options& o_;
+    std::string key_, answer_;
+    std::ostream& err_;
+    std::optional<text_output> to_;
+    std::unordered_set<std::string> whole_tracks_;
+    bool frame_rates_ = false;
+    std::size_t told_ = 0, entries_ = 0;
+};
+
+/// One answer against the key: both surveyed at once (the answer on a
+/// thread of its own, its warnings said after the key's), then its rows as
+/// they are settled, then the summary.
+int compare_one(const options& o, const input_source& key_src, const input_source& src, std::ostream& out,
+                std::ostream& err) {
+    std::ostringstream held;
+    warnings key_warn(err, key_src.source()), answer_warn(err, src.source()), answer_held(held, src.source());
+    answer_survey answer;
+    std::thread t;
+    const bool alongside = try_start_thread(t, [&] { answer = survey_answer(o, src, answer_held); });
+    std::optional<surveyed_file> key;
+    try {
+        key = survey_file(o, key_src, key_warn);
+    } catch (...) {
+        if (alongside) t.join();
+        throw;
+    }
+    if (alongside) t.join();
+    else answer = survey_answer(o, src, answer_held);
+    answer_warn.adopt(answer_held, held.str());
+
+    one_answer_report report(o, key_src.source(), src.source(), out, err);
+    const grade g = grade_answer(
+        o, key_src, *key, src, answer, [&](const comparison_summary& c) { report.begin(c); },
+        [&](const row_difference& r) { report.row(r); });
+    if (g.result) return report.finish(g, out);
+    print_error(err, g.error);
+    if (o.report == format::json) emit(o, fmt::format("{{\"error\": {}, \"pass\": false}}\n", json_quote(g.error)), out);
+    return 2;
 }
 
 /// A grade table row's figures: rows, failed, missing, extra, the largest
@@ -115,14 +290,14 @@ struct table_row {
 
 table_row row_of(const grade& g) {
     if (!g.result) return {"", "", "", "", "", "", g.error};
-    const comparison& c = *g.result;
-    table_row t{std::to_string(c.rows.size()), std::to_string(c.failed), std::to_string(c.missing),
+    const comparison_summary& c = *g.result;
+    table_row t{std::to_string(c.compared), std::to_string(c.failed), std::to_string(c.missing),
                 std::to_string(c.extra), "", "", ""};
     if (c.worst) {
-        t.largest = fmt::format("{:.6g}", *c.rows[*c.worst].angle_deg);
-        t.where = row_place(c.rows[*c.worst]);
+        t.largest = fmt::format("{:.6g}", *c.worst->angle_deg);
+        t.where = row_place(*c.worst);
     }
-    if (const row_difference* r = first_failure(c)) t.reason = row_place(*r, !r->extra) + ": " + r->problem;
+    if (const auto& r = c.first_failure) t.reason = row_place(*r, !r->extra) + ": " + r->problem;
     if (!g.hint.empty()) t.reason += (t.reason.empty() ? "" : "; ") + g.hint;
     return t;
 }
@@ -154,7 +329,7 @@ std::string grade_table_csv(const std::vector<grade>& grades) {
     for (const grade& g : grades) {
         const table_row t = row_of(g);
         append_csv_cell(out, printable(g.file));
-        const row_difference* worst = g.result && g.result->worst ? &g.result->rows[*g.result->worst] : nullptr;
+        const row_difference* worst = g.result && g.result->worst ? &*g.result->worst : nullptr;
         out += fmt::format(",{},{},{},{},{},{},", g.verdict(), t.rows, t.failed, t.missing, t.extra,
                            number_text(worst ? worst->angle_deg : std::nullopt));
         if (worst) append_csv_cell(out, worst->track);
@@ -181,11 +356,11 @@ std::string grade_table_json(const std::string& key, const std::vector<grade>& g
             out += ", \"error\": " + json_quote(g.error) + "}";
             continue;
         }
-        const comparison& c = *g.result;
-        const row_difference* worst = c.worst ? &c.rows[*c.worst] : nullptr;
+        const comparison_summary& c = *g.result;
+        const row_difference* worst = c.worst ? &*c.worst : nullptr;
         out += fmt::format(", \"rows\": {}, \"failed\": {}, \"missing\": {}, \"extra\": {}, \"max_difference\": {}, "
                            "\"track\": {}, \"time\": {}, \"reason\": {}",
-                           c.rows.size(), c.failed, c.missing, c.extra,
+                           c.compared, c.failed, c.missing, c.extra,
                            json_number(worst ? worst->angle_deg : std::nullopt),
                            worst ? json_quote(worst->track) : "null",
                            json_number(worst ? std::optional(worst->time) : std::nullopt),
@@ -196,150 +371,29 @@ std::string grade_table_json(const std::string& key, const std::vector<grade>& g
     return out;
 }
 
-/// Whether any key of `doc` is timed by its frame number alone.
-bool counted(const document& doc) {
-    return std::any_of(doc.tracks.begin(), doc.tracks.end(), [](const track& t) {
-        return std::any_of(t.keys.begin(), t.keys.end(), [](const key& k) { return k.frame && !k.has_time; });
-    });
-}
-
-/// The answers keyrot looks at for a likely cause: no more keys than a
-/// homework file, as each reading of another way costs a reading of it.
-constexpr std::size_t hint_keys = 100000;
-
-/// Where rows are both missing and extra: a frame rate that could explain it. Where matched
-/// rows differ: another reading of the answer (degrees for radians
-/// or the reverse, the other quaternion order, another Euler sequence) under
-/// which every row passes.
-std::string likely_cause(const options& o, const document& expected, const document& answer, const input_source& src,
-                         const comparison& c) {
-    if (c.missing > 0 && c.extra > 0 && (counted(expected) || counted(answer)))
-        return fmt::format("rows missing and extra: frame numbers without times count at {} fps unless the file "
-                           "states a rate; --key-fps RATE reads them at another",
-                           o.key_fps.value_or(default_key_fps));
-    const bool some_differ = std::any_of(c.rows.begin(), c.rows.end(),
-                                         [](const row_difference& r) { return r.angle_deg && !r.pass(); });
-    std::size_t keys = 0;
-    std::unordered_set<rep> given;
-    for (const track& t : answer.tracks) {
-        keys += t.keys.size();
-        for (const key& k : t.keys) given.insert(k.given_as);
-    }
-    if (!some_differ || keys > hint_keys) return "";
-    std::vector<std::pair<options, std::string>> readings;
-    if (given.contains(rep::axis_angle) || given.contains(rep::rotvec) || given.contains(rep::euler)) {
-        options other = o;
-        other.radians = !o.radians;
-        readings.emplace_back(other, o.radians ? "read as degrees (without --radians)" : "read as radians (--radians)");
-    }
-    if (given.contains(rep::quat)) {
-        options other = o;
-        other.order = o.order == quat_order::wxyz ? quat_order::xyzw : quat_order::wxyz;
-        other.order_given = true;
-        readings.emplace_back(other, fmt::format("read with --quat-order {}", to_string(other.order)));
-    }
-    if (given.contains(rep::euler))
-        for (const std::string_view axes : {"ZYX", "XYZ", "ZXY", "YXZ", "XZY", "YZX", "ZXZ", "ZYZ", "XYX", "XZX",
-                                            "YXY", "YZY", "xyz", "zyx", "zxy", "yxz", "xzy", "yzx", "zxz", "zyz",
-                                            "xyx", "xzx", "yxy", "yzy"}) {
-            const euler_seq seq = *parse_euler_seq(axes);
-            if (answer.tracks.front().euler && seq.name == answer.tracks.front().euler->name) continue;
-            options other = o;
-            other.euler = seq;
-            readings.emplace_back(other, fmt::format("read with --euler {}", axes));
-        }
-    for (const auto& [other, how] : readings) {
-        std::ostringstream quiet;
-        warnings warn(quiet, src.source());
-        try {
-            const comparison again = compare_tracks(expected.tracks, read_input(other, src, warn).tracks,
-                                                    {o.tol_deg, o.tol_translation}, o.extra);
-            if (again.failed == 0) return fmt::format("every row is within tolerance when the answer is {}", how);
-        } catch (const error&) {  // that reading is not a cause
-        }
-    }
-    return "";
-}
-
-/// Grades one answer against `key`, warnings to `err`; an answer that
-/// cannot be read is a grade, not the end of the run.
-grade grade_answer(const options& o, const document& expected, const input_source& src, std::ostream& err) {
-    grade g{src.source(), std::nullopt, "", ""};
-    warnings warn(err, src.source());
-    try {
-        const document answer = read_input(o, src, warn);
-        g.result = compare_tracks(expected.tracks, answer.tracks, {o.tol_deg, o.tol_translation}, o.extra);
-        if (!g.pass()) g.hint = likely_cause(o, expected, answer, src, *g.result);
-    } catch (const usage_error&) {
-        throw;
-    } catch (const error& e) {
-        g.error = e.what();
-    }
-    return g;
-}
-
-/// One answer: its failing rows on stderr (each under the name of the file
-/// whose frame number it prints), and the summary or a report.
-int report_one(const options& o, const document& expected, const grade& g, std::ostream& out, std::ostream& err) {
-    const tolerances tol{o.tol_deg, o.tol_translation};
-    if (!g.result) {
-        print_error(err, g.error);
-        if (o.report == format::json) emit(o, json_report(g, tol), out);
-        return 2;
-    }
-    const comparison& c = *g.result;
-    if (c.frame_rates)
-        print_error(err, fmt::format("{} counts frames at {:.6g} fps, {} at {:.6g} fps: rows are matched by time",
-                                     expected.source, c.frame_rates->first, g.file, c.frame_rates->second));
-    // A track missing from either file is said once, not row by row.
-    constexpr std::size_t max_reasons = 10;
-    std::unordered_set<std::string_view> whole_tracks;
-    for (const auto& [names, where] :
-         {std::pair(&c.missing_tracks, "missing from ACTUAL"), std::pair(&c.extra_tracks, "only in ACTUAL")}) {
-        for (const std::string& name : *names) {
-            if (whole_tracks.size() < max_reasons) print_error(err, fmt::format("{}: track '{}' {}", g.file, name, where));
-            whole_tracks.insert(name);
-        }
-    }
-    if (whole_tracks.size() > max_reasons)
-        print_error(err, fmt::format("{}: {} more tracks missing from one file", g.file, whole_tracks.size() - max_reasons));
-    std::size_t told = 0;
-    for (const row_difference& r : c.rows) {
-        if (r.pass() || whole_tracks.contains(r.track)) continue;
-        // A row missing from ACTUAL is at EXPECTED's frame; a matched row
-        // names its frame only where both files number frames alike.
-        const bool missing = !r.angle_deg && !r.extra;
-        const std::string place = missing ? expected.source + ": " + row_place(r)
-                                          : g.file + ": " + row_place(r, r.extra || !c.frame_rates);
-        if (told++ < max_reasons) print_error(err, place + ": " + r.problem);
-    }
-    if (told > max_reasons) print_error(err, fmt::format("{}: {} more rows failed", g.file, told - max_reasons));
-    const std::string line = summary(c) + (g.hint.empty() ? "" : "; " + g.hint) + "\n";
-    if (o.report == format::json) emit(o, json_report(g, tol), out);
-    else if (o.report == format::csv) emit(o, csv_report(c), out);
-    if (o.report) err << line;  // (standard output holds the report alone)
-    else emit(o, line, out);
-    return c.failed ? 1 : 0;
-}
-
 }  // namespace
 
 int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
-    if (o.inputs.size() < 2) throw usage_error("compare: ANSWER is missing: expected the key, then one answer or more");
+    if (o.inputs.size() < 2)
+        throw usage_error("compare: ANSWER is missing: expected the key, then one answer or more (see keyrot compare --help)");
     if (std::count_if(o.inputs.begin(), o.inputs.end(), [](const auto& f) { return is_standard_stream(f); }) > 1)
         throw usage_error("compare: only one of KEY and the answers can be '-'");
     const input_source key_src(o.inputs[0], in);
+    if (o.inputs.size() == 2) {
+        const input_source src(o.inputs[1], in);
+        return compare_one(o, key_src, src, out, err);
+    }
     warnings warn_key(err, key_src.source());
-    const document expected = read_input(o, key_src, warn_key);
+    const surveyed_file key = survey_file(o, key_src, warn_key);
+    // A grade table: a row per answer; the hints and the count on stderr.
     std::vector<grade> grades;
     for (std::size_t i = 1; i < o.inputs.size(); ++i) {
         const input_source src(o.inputs[i], in);
-        grades.push_back(grade_answer(o, expected, src, err));
-        if (o.inputs.size() == 2) return report_one(o, expected, grades.back(), out, err);
+        warnings warn(err, src.source());
+        grades.push_back(grade_answer(o, key_src, key, src, survey_answer(o, src, warn)));
     }
-    // A grade table: a row per answer; the hints and the count on stderr.
     const tolerances tol{o.tol_deg, o.tol_translation};
-    if (o.report == format::json) emit(o, grade_table_json(expected.source, grades, tol), out);
+    if (o.report == format::json) emit(o, grade_table_json(key.source, grades, tol), out);
     else if (o.report == format::csv) emit(o, grade_table_csv(grades), out);
     else emit(o, grade_table_text(grades), out);
     std::size_t passed = 0, unreadable = 0;
@@ -349,7 +403,7 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
         if (!g.result) print_error(err, g.error);
     }
     err << fmt::format("{} answers graded against {}: {} pass, {} fail, {} unreadable\n", grades.size(),
-                       printable(expected.source), passed, grades.size() - passed - unreadable, unreadable);
+                       printable(key.source), passed, grades.size() - passed - unreadable, unreadable);
     return passed == grades.size() ? 0 : 1;
 }
 

@@ -1,7 +1,9 @@
-// info: what an input holds, track by track.
+// info: what an input holds, track by track: a summary of each, read a key
+// at a time; with --segments, every segment's angle and speed as well.
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <ostream>
 #include <utility>
 #include <vector>
@@ -17,8 +19,54 @@ namespace keyrot::detail {
 
 namespace {
 
-std::string index_list(const std::vector<std::size_t>& v) {
-    return v.empty() ? std::string("none") : fmt::format("{}", fmt::join(v, ", "));
+/// A track as info describes it: its description, and what its file says of it.
+struct described_track {
+    track_describer keys;
+    std::optional<track_interpolation> interpolation;  ///< the file's own (glTF)
+    channels carried;
+};
+
+/// An input's tracks described, in order of first appearance.
+struct described_file {
+    std::string source;
+    format fmt = format::csv;
+    std::vector<described_track> tracks;
+};
+
+described_file describe_file(const options& o, const input_source& src, warnings& warn) {
+    described_file file{src.source(), src.detect(o.from), {}};
+    std::map<std::string, std::size_t> index;
+    std::vector<double> last;  // each track's last time (tracks may interleave)
+    const auto restart = [&] { file.tracks.clear(), index.clear(), last.clear(); };
+    const auto each = [&](const std::string& name, const key_settings& s, key&& k) {
+        const auto [it, added] = index.emplace(name, file.tracks.size());
+        if (added) {
+            file.tracks.push_back({track_describer(name, s.euler, o.segments), s.interpolation, {}});
+            last.push_back(k.time);
+        } else {
+            key previous;
+            previous.time = last[it->second];
+            check_order(previous, k, src.source());
+            last[it->second] = k.time;
+        }
+        file.tracks[it->second].keys.add(k);
+        file.tracks[it->second].carried |= channels_of(k);
+    };
+    for_each_key(src, file.fmt, reading(o, src.source()), warn, restart, each);
+    return file;
+}
+
+/// How a track's file says its channels are played: a glTF LINEAR sampler
+/// is "slerp" for a rotation (as --method names it) and "linear" for a
+/// translation or scale: {"rotation", "slerp"}, {"translation", "linear"}.
+std::vector<std::pair<std::string_view, std::string_view>> interpolations(const described_track& t) {
+    const track_interpolation& i = *t.interpolation;
+    // A vector channel "played by slerp" moves in a straight line: linear.
+    const auto vector = [](method how) { return how == method::slerp ? std::string_view("linear") : to_string(how); };
+    std::vector<std::pair<std::string_view, std::string_view>> out{{"rotation", to_string(i.rotation)}};
+    if (t.carried.translation) out.emplace_back("translation", vector(i.translation));
+    if (t.carried.scale) out.emplace_back("scale", vector(i.scale));
+    return out;
 }
 
 std::string rep_list(const std::vector<rep>& reps) {
@@ -27,46 +75,48 @@ std::string rep_list(const std::vector<rep>& reps) {
     return fmt::format("{}", fmt::join(names, ", "));
 }
 
-/// How a track's file says its channels are played: a glTF LINEAR sampler
-/// is "slerp" for a rotation (as --method names it) and "linear" for a
-/// translation or scale: {"rotation", "slerp"}, {"translation", "linear"}.
-std::vector<std::pair<std::string_view, std::string_view>> interpolations(const track& t) {
-    const track_interpolation& i = *t.interpolation;
-    channels carried;
-    for (const key& k : t.keys) carried |= channels_of(k);
-    // A vector channel "played by slerp" moves in a straight line: linear.
-    const auto vector = [](method how) { return how == method::slerp ? std::string_view("linear") : to_string(how); };
-    std::vector<std::pair<std::string_view, std::string_view>> out{{"rotation", to_string(i.rotation)}};
-    if (carried.translation) out.emplace_back("translation", vector(i.translation));
-    if (carried.scale) out.emplace_back("scale", vector(i.scale));
-    return out;
+/// "none", "1, 5, 9", or the first ten and how many more.
+std::string key_list_text(const key_list& l) {
+    if (l.count == 0) return "none";
+    std::string listed = fmt::format("{}", fmt::join(l.first, ", "));
+    return l.count == l.first.size() ? listed : fmt::format("{}, ... ({} in all)", listed, l.count);
 }
 
 /// `bvh`: a BVH file's hierarchy and motion header (tracks[i] is joints[i]).
-std::string info_text(const document& doc, const std::vector<track_info>& infos, std::optional<int> precision,
-                      const bvh_source* bvh) {
+std::string info_text(const described_file& file, std::optional<int> precision, const bvh_source* bvh) {
     auto num = [precision](double v) {
         std::string s;
         append_number(s, v, precision.value_or(6));
         return s;
     };
+    const std::size_t n_tracks = file.tracks.size();
     // (printable: a file name's control bytes must not reach a terminal raw)
-    std::string out = fmt::format("{}: {} track{}, {}{}\n", printable(doc.source), infos.size(),
-                                  infos.size() == 1 ? "" : "s", to_string(doc.fmt),
+    std::string out = fmt::format("{}: {} track{}, {}{}\n", printable(file.source), n_tracks, n_tracks == 1 ? "" : "s",
+                                  to_string(file.fmt),
                                   bvh ? fmt::format(", {} frames at {} fps (Frame Time {})", bvh->frames, num(bvh->fps),
                                                     num(bvh->frame_time))
                                       : "");
-    for (std::size_t n = 0; n < infos.size(); ++n) {
-        const track_info& t = infos[n];
+    for (std::size_t n = 0; n < n_tracks; ++n) {
+        const track_info& t = file.tracks[n].keys.info();
         out += fmt::format("{}: {} key{}, {} s to {} s, given as {}\n", t.name.empty() ? "track" : "track " + t.name,
                            t.keys, t.keys == 1 ? "" : "s", num(t.start), num(t.end), rep_list(t.given_as));
         if (bvh)
             out += fmt::format("  channels: {} (Euler {})\n", fmt::join(bvh->joints[n].channels, " "),
                                bvh->joints[n].euler.name);
-        if (doc.tracks[n].interpolation) {
+        if (file.tracks[n].interpolation) {
             std::vector<std::string> each;
-            for (const auto& [channel, how] : interpolations(doc.tracks[n])) each.push_back(fmt::format("{} {}", channel, how));
+            for (const auto& [channel, how] : interpolations(file.tracks[n])) each.push_back(fmt::format("{} {}", channel, how));
             out += fmt::format("  interpolation: {}\n", fmt::join(each, ", "));
+        }
+        if (t.keys > 1) {
+            const double rate = static_cast<double>(t.keys - 1) / (t.end - t.start);
+            out += t.even() ? fmt::format("  spacing: every {} s ({} keys/s)\n", num(t.shortest_gap), num(rate))
+                            : fmt::format("  spacing: {} s to {} s ({} keys/s on average)\n",
+                                          num(t.shortest_gap), num(t.longest_gap), num(rate));
+            const segment_info& s = *t.largest;
+            out += fmt::format("  largest step: {} deg, keys {} to {} ({} s to {} s), {} deg/s{}\n", num(s.angle_deg),
+                               t.largest_from, t.largest_from + 1, num(t.largest_start), num(t.largest_end),
+                               num(s.speed_deg_s), s.direct_long_way && t.signed_keys ? " (long way with --path direct)" : "");
         }
         for (std::size_t i = 0; i < t.segments.size(); ++i) {
             const segment_info& s = t.segments[i];
@@ -75,53 +125,67 @@ std::string info_text(const document& doc, const std::vector<track_info>& infos,
             out += fmt::format("  {:<7}  {:<11}  {}{}\n", fmt::format("{}-{}", i, i + 1), num(s.angle_deg),
                                num(s.speed_deg_s), long_way ? "  (long way with --path direct)" : "");
         }
-        if (t.signed_keys) out += fmt::format("  keys flipped by --path shortest: {}\n", index_list(t.flipped));
-        out += fmt::format("  keys renormalised: {}\n", index_list(t.renormalised));
-        out += fmt::format("  Euler keys within {} deg of gimbal lock: {}\n", near_gimbal_deg, index_list(t.near_gimbal));
+        if (t.signed_keys) out += fmt::format("  keys flipped by --path shortest: {}\n", key_list_text(t.flipped));
+        out += fmt::format("  keys renormalised: {}\n", key_list_text(t.renormalised));
+        out += fmt::format("  Euler keys within {} deg of gimbal lock: {}\n", near_gimbal_deg,
+                           key_list_text(t.near_gimbal));
     }
     return out;
 }
 
-std::string info_json(const document& doc, const std::vector<track_info>& infos, const bvh_source* bvh) {
+/// `segments`: every segment listed (--segments).
+std::string info_json(const described_file& file, bool segments, const bvh_source* bvh) {
     auto num = [](double v) {
         std::string s;
         append_number(s, v, std::nullopt);
         return s;
     };
-    auto list = [](const std::vector<std::size_t>& v) { return fmt::format("[{}]", fmt::join(v, ", ")); };
-    std::string out = "{\"source\": " + json_quote(doc.source) + ", \"format\": \"" +
-                      std::string(to_string(doc.fmt)) + "\", ";
+    auto list = [](const key_list& l) {
+        return fmt::format("{{\"count\": {}, \"first\": [{}]}}", l.count, fmt::join(l.first, ", "));
+    };
+    std::string out = "{\"source\": " + json_quote(file.source) + ", \"format\": \"" +
+                      std::string(to_string(file.fmt)) + "\", ";
     if (bvh)
         out += fmt::format("\"frames\": {}, \"fps\": {}, \"frame_time\": {}, ", bvh->frames, num(bvh->fps),
                            num(bvh->frame_time));
     out += "\"tracks\": [";
-    for (std::size_t n = 0; n < infos.size(); ++n) {
-        const track_info& t = infos[n];
-        std::vector<std::string> reps, segments;
+    for (std::size_t n = 0; n < file.tracks.size(); ++n) {
+        const track_info& t = file.tracks[n].keys.info();
+        std::vector<std::string> reps;
         for (rep r : t.given_as) reps.push_back(fmt::format("\"{}\"", to_string(r)));
-        for (const segment_info& s : t.segments)
-            segments.push_back(fmt::format("{{\"angle\": {}, \"speed\": {}, \"direct_long_way\": {}}}", num(s.angle_deg),
-                                           num(s.speed_deg_s), t.signed_keys ? fmt::format("{}", s.direct_long_way) : "null"));
-        // Only where the file states it (glTF).
-        std::string interpolation;
-        if (doc.tracks[n].interpolation) {
+        const auto segment = [&](const segment_info& s) {
+            return fmt::format("{{\"angle\": {}, \"speed\": {}, \"direct_long_way\": {}}}", num(s.angle_deg),
+                               num(s.speed_deg_s), t.signed_keys ? fmt::format("{}", s.direct_long_way) : "null");
+        };
+        std::string more;
+        if (t.keys > 1)
+            more += fmt::format(", \"shortest_gap\": {}, \"longest_gap\": {}, \"largest_segment\": {{\"from\": {}, "
+                                "\"start\": {}, \"end\": {}, \"angle\": {}, \"speed\": {}}}",
+                                num(t.shortest_gap), num(t.longest_gap), t.largest_from, num(t.largest_start),
+                                num(t.largest_end), num(t.largest->angle_deg), num(t.largest->speed_deg_s));
+        if (segments) {
             std::vector<std::string> each;
-            for (const auto& [channel, how] : interpolations(doc.tracks[n]))
+            for (const segment_info& s : t.segments) each.push_back(segment(s));
+            more += fmt::format(", \"segments\": [{}]", fmt::join(each, ", "));
+        }
+        // Only where the file states it (glTF).
+        if (file.tracks[n].interpolation) {
+            std::vector<std::string> each;
+            for (const auto& [channel, how] : interpolations(file.tracks[n]))
                 each.push_back(fmt::format("\"{}\": \"{}\"", channel, how));
-            interpolation = fmt::format(", \"interpolation\": {{{}}}", fmt::join(each, ", "));
+            more += fmt::format(", \"interpolation\": {{{}}}", fmt::join(each, ", "));
         }
         if (bvh) {
             std::vector<std::string> names;
             for (const std::string& c : bvh->joints[n].channels) names.push_back(json_quote(c));
-            interpolation += fmt::format(", \"channels\": [{}], \"euler\": \"{}\"", fmt::join(names, ", "),
-                                         bvh->joints[n].euler.name);
+            more += fmt::format(", \"channels\": [{}], \"euler\": \"{}\"", fmt::join(names, ", "),
+                                bvh->joints[n].euler.name);
         }
-        out += fmt::format(
-            "{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}], \"segments\": [{}], "
-            "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}{}}}",
-            n ? "," : "", json_quote(t.name), t.keys, num(t.start), num(t.end), fmt::join(reps, ", "),
-            fmt::join(segments, ", "), t.signed_keys ? list(t.flipped) : "null", list(t.renormalised), list(t.near_gimbal),
-            interpolation);
+        out += fmt::format("{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}]{}, "
+                           "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}",
+                           n ? "," : "", json_quote(t.name), t.keys, num(t.start), num(t.end), fmt::join(reps, ", "),
+                           more, t.signed_keys ? list(t.flipped) : "null", list(t.renormalised), list(t.near_gimbal));
+        out += '}';
     }
     out += "]}\n";
     return out;
@@ -137,11 +201,9 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
         try {
             const input_source src(name, in);
             warnings warn(err, src.source());
-            const document doc = read_input(o, src, warn);
-            std::vector<track_info> infos;
-            for (const track& t : doc.tracks) infos.push_back(describe(t));
-            const auto bvh = doc.fmt == format::bvh ? read_bvh_source(*src.open(), reading(o, src.source())) : nullptr;
-            text += as_json ? info_json(doc, infos, bvh.get()) : info_text(doc, infos, o.precision, bvh.get());
+            const described_file file = describe_file(o, src, warn);
+            const auto bvh = file.fmt == format::bvh ? read_bvh_source(*src.open(), reading(o, src.source())) : nullptr;
+            text += as_json ? info_json(file, o.segments, bvh.get()) : info_text(file, o.precision, bvh.get());
         } catch (const usage_error&) {
             throw;
         } catch (const error& e) {

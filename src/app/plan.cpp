@@ -64,13 +64,30 @@ reduce_options reducing(const options& o) {
     return r;
 }
 
-document read_input(const options& o, const input_source& src, warnings& warn) {
-    return read_document(src, src.detect(o.from), reading(o, src.source()), warn, json_reading::streamed_first);
+text_output::text_output(const options& o, std::ostream& out) : out_(out) {
+    if (const auto file = output_path(o)) file_.emplace(*file, commit_mode{o.fsync, nullptr});
+}
+
+void text_output::write(std::string_view text) {
+    pending_ += text;
+    if (pending_.size() >= 1 << 16) flush();
+}
+
+void text_output::flush() {
+    if (file_) file_->write(pending_);
+    else write_to_stream(out_, pending_);
+    pending_.clear();
+}
+
+void text_output::finish() {
+    flush();
+    if (file_) file_->commit();
 }
 
 void emit(const options& o, const std::string& text, std::ostream& out) {
-    if (const auto file = output_path(o)) write_file_atomically(*file, text, {o.fsync});
-    else write_to_stream(out, text);
+    text_output to(o, out);
+    to.write(text);
+    to.finish();
 }
 
 }  // namespace keyrot::detail

@@ -8,6 +8,7 @@
 
 #include "io/document.hpp"
 #include "io/io.hpp"
+#include "io/output.hpp"
 #include "io/source.hpp"
 #include "app/app.hpp"
 #include "keyrot/reduce.hpp"
@@ -30,8 +31,21 @@ resample_options resampling(const options& o);
 /// What reduce's flags make of a track (a glTF sampler's own interpolation aside).
 reduce_options reducing(const options& o);
 
-/// An input read whole (compare, info), a JSON document streamed if it can be.
-document read_input(const options& o, const input_source& src, warnings& warn);
+/// Text written as it is made, to -o FILE (a temporary file put in place
+/// by finish()) or to `out`, a piece at a time: a long report is never
+/// held whole.
+class text_output {
+public:
+    text_output(const options& o, std::ostream& out);
+    void write(std::string_view text);
+    void finish();
+
+private:
+    void flush();
+    std::ostream& out_;
+    std::optional<output_file> file_;
+    std::string pending_;
+};
 
 /// Writes `text` to -o FILE (atomically) or to `out`.
 void emit(const options& o, const std::string& text, std::ostream& out);

@@ -540,7 +540,7 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
     if (p.in == format::json) read_whole = !scan_json(p, src, d, warn);
     else d = scan(p, src, warn, read_whole);
     if (read_whole) {
-        whole = read_document(src, p.in, p.reading, warn, json_reading::whole);
+        whole = read_document(*src.open(), p.in, p.reading, warn);
         d = facts_of(*whole);
     }
     p.rows->check(d, warn);

@@ -4,10 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <string_view>
-#include <unordered_map>
 #include <unordered_set>
-#include <utility>
 
 #include "keyrot/convert.hpp"
 #include "keyrot/tolerances.hpp"
@@ -15,181 +12,191 @@
 namespace keyrot {
 namespace {
 
-/// Finds the key of a track that matches another key: the first by frame if
-/// both have one, else by time (|dt| <= tol::match_time, or the times'
-/// rounding as stored where that is more: 2^-24 of them in a glTF file). Binary searches of
-/// the frames (sorted, ties by position) and of the times (which increase
-/// strictly within a track) make that O(log n) rather than a scan, so that
-/// long tracks compare in n log n.
-class key_finder {
-public:
-    /// `by_frame`: frame numbers count at the same rate in both tracks;
-    /// `rounding`: the relative rounding of either track's times as stored.
-    key_finder(const track& t, bool by_frame, double rounding) : keys_(t.keys), by_frame_(by_frame), rounding_(rounding) {
-        for (std::size_t i = 0; i < keys_.size(); ++i) {
-            if (keys_[i].frame && by_frame) frames_.emplace_back(*keys_[i].frame, i);
-            else without_frame_.push_back(i);
-        }
-        std::sort(frames_.begin(), frames_.end());
-    }
-
-    std::optional<std::size_t> find(const key& k) const {
-        if (!by_frame_) return find_by_time(k);
-        if (!k.frame) return find_by_time(k);
-        const auto unframed = std::partition_point(without_frame_.begin(), without_frame_.end(),
-                                                   [&](std::size_t i) { return too_early(keys_[i], k); });
-        std::optional<std::size_t> found;
-        if (unframed != without_frame_.end() && near(keys_[*unframed], k)) found = *unframed;
-        const auto framed = std::lower_bound(frames_.begin(), frames_.end(), std::pair(*k.frame, std::size_t{0}));
-        if (framed != frames_.end() && framed->first == *k.frame)
-            found = std::min(found.value_or(framed->second), framed->second);
-        return found;
-    }
-
-private:
-    // Among keys in increasing time, those too early form a prefix, as
-    // k.time - other.time only falls as other.time grows: the first key
-    // after it is the one candidate.
-    double tolerance(const key& k) const { return std::max(tol::match_time, std::fabs(k.time) * rounding_); }
-    bool too_early(const key& other, const key& k) const {
-        return other.time < k.time && k.time - other.time > tolerance(k);
-    }
-    bool near(const key& other, const key& k) const { return std::fabs(k.time - other.time) <= tolerance(k); }
-
-    std::optional<std::size_t> find_by_time(const key& k) const {
-        const auto it = std::partition_point(keys_.begin(), keys_.end(), [&](const key& other) { return too_early(other, k); });
-        if (it == keys_.end() || !near(*it, k)) return std::nullopt;
-        return static_cast<std::size_t>(it - keys_.begin());
-    }
-
-    const std::vector<key>& keys_;
-    bool by_frame_;
-    double rounding_;
-    std::vector<std::pair<double, std::size_t>> frames_;  ///< (frame, index) of the keys that have one
-    std::vector<std::size_t> without_frame_;
-};
-
-/// The relative rounding of a track's times as stored: a glTF file's own,
-/// or that of 32-bit floats where every time is one (a glTF file's times
-/// written out as decimals, 32.06666564941406 for 32.0666...).
-double rounding_of(const track& t) {
-    const double stored = t.interpolation ? t.interpolation->time_rounding : 0;
-    const bool float32 = std::all_of(t.keys.begin(), t.keys.end(), [](const key& k) {
-        return static_cast<double>(static_cast<float>(k.time)) == k.time;
-    });
-    return std::max(stored, float32 ? 0x1p-24 : 0.0);
-}
-
-/// The rate a track's frame numbers count at, and whether the frames'
-/// own times imply it (then as precisely as those times were written).
-struct frame_rate_of {
-    double rate;
-    bool implied;
-};
-
-frame_rate_of rate_of(const track& t) {
-    const key* timed = nullptr;  // the last key whose frame and time give the rate
-    for (const key& k : t.keys) {
-        if (!k.frame) continue;
-        if (!k.has_time) return {t.frame_rate(), false};
-        if (k.time != 0 && *k.frame != 0) timed = &k;
-    }
-    if (!timed) return {t.frame_rate(), false};
-    return {*timed->frame / timed->time, true};
-}
+constexpr int expected_side = 0, actual_side = 1;
 
 /// Whether frame numbers name the same moments in both tracks: stated (or
 /// assumed) rates are equal; where a rate is implied by frames that carry
 /// their times (rounded as they were written, say to 0.0417), the two
 /// grids stay within half a frame of each other up to the last frame.
-bool same_frames(const track& e, const track& a) {
-    const frame_rate_of re = rate_of(e), ra = rate_of(a);
-    if (!re.implied && !ra.implied) return re.rate == ra.rate;
-    double last = 0;
-    for (const track* t : {&e, &a})
-        for (const key& k : t->keys)
-            if (k.frame) last = std::max(last, std::fabs(*k.frame));
-    return std::fabs(last / re.rate - last / ra.rate) <= 0.5 / std::max(re.rate, ra.rate);
-}
-
-row_difference unmatched(const track& t, const key& k, const char* problem) {
-    return {t.name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, problem, false};
+bool same_frames(const track_survey& e, const track_survey& a) {
+    const double re = e.counted_rate(), ra = a.counted_rate();
+    if (!e.rate_implied() && !a.rate_implied()) return re == ra;
+    const double last = std::max(e.last_frame(), a.last_frame());
+    return std::fabs(last / re - last / ra) <= 0.5 / std::max(re, ra);
 }
 
 }  // namespace
 
-double counted_rate(const track& t) { return rate_of(t).rate; }
+track_survey::track_survey(std::string name, std::optional<double> key_fps, double time_rounding)
+    : name_(std::move(name)), key_fps_(key_fps), stored_rounding_(time_rounding) {}
+
+track_survey::track_survey(const track& t)
+    : track_survey(t.name, t.key_fps, t.interpolation ? t.interpolation->time_rounding : 0) {
+    for (const key& k : t.keys) add(k);
+}
+
+void track_survey::add(const key& k) {
+    ++keys_;
+    float32_ = float32_ && static_cast<double>(static_cast<float>(k.time)) == k.time;
+    if (!k.frame) return;
+    any_frame_ = true;
+    last_frame_ = std::max(last_frame_, std::fabs(*k.frame));
+    if (!k.has_time) frame_without_time_ = true;
+    else if (k.time != 0 && *k.frame != 0) timed_ = std::pair(*k.frame, k.time);
+}
+
+bool track_survey::rate_implied() const { return !frame_without_time_ && timed_; }
+
+double track_survey::counted_rate() const {
+    return rate_implied() ? timed_->first / timed_->second : key_fps_.value_or(default_key_fps);
+}
+
+double track_survey::rounding() const { return std::max(stored_rounding_, float32_ ? 0x1p-24 : 0.0); }
+
+double counted_rate(const track& t) { return track_survey(t).counted_rate(); }
+
+comparer::comparer(const std::vector<track_survey>& expected, const std::vector<track_survey>& actual,
+                   const tolerances& tol, extra_rows extra, row_sink row)
+    : tol_(tol), extra_(extra), row_(std::move(row)) {
+    std::unordered_map<std::string_view, const track_survey*> in_actual;  // (names are unique within a file)
+    for (const track_survey& a : actual) in_actual.emplace(a.name(), &a);
+    for (const track_survey& e : expected) {
+        pairing& p = pairs_[e.name()];
+        p.in_expected = true;
+        order_.push_back(e.name());
+        const auto named = in_actual.find(e.name());
+        if (named == in_actual.end()) {
+            summary_.missing_tracks.push_back(e.name());
+            continue;
+        }
+        const track_survey& a = *named->second;
+        p.in_actual = true;
+        // Frame numbers at different rates are different times: matched by time.
+        p.by_frame = same_frames(e, a);
+        p.rounding = std::max(e.rounding(), a.rounding());
+        if (!p.by_frame && !summary_.frame_rates && e.any_frame() && a.any_frame())
+            summary_.frame_rates = std::pair(e.counted_rate(), a.counted_rate());
+    }
+    for (const track_survey& a : actual) {
+        pairing& p = pairs_[a.name()];
+        if (p.in_expected) continue;
+        p.in_actual = true;
+        order_.push_back(a.name());
+        summary_.extra_tracks.push_back(a.name());
+    }
+}
+
+void comparer::expected(const std::string& track, key k) { add(expected_side, track, std::move(k)); }
+void comparer::actual(const std::string& track, key k) { add(actual_side, track, std::move(k)); }
+
+void comparer::add(int side, const std::string& track, key&& k) {
+    const auto it = pairs_.find(track);
+    if (it == pairs_.end() || !it->second.in_expected || !it->second.in_actual) return put(unmatched(track, k, side));
+    it->second.waiting[side].push_back(std::move(k));
+    ++waiting_[side];
+    settle(track, it->second);
+}
+
+/// Pairs the first keys waiting on both sides while it can: either they
+/// match, or the earlier of them can match no key still to come (times
+/// increase within a track), and is settled as unmatched.
+void comparer::settle(const std::string& name, pairing& p) {
+    auto& [e_keys, a_keys] = p.waiting;
+    while (!e_keys.empty() && !a_keys.empty()) {
+        const key& e = e_keys.front();
+        const key& a = a_keys.front();
+        const bool by_frame = p.by_frame && e.frame && a.frame;
+        const double near = std::max(tol::match_time, std::fabs(e.time) * p.rounding);
+        int settled = expected_side;  // or actual_side, or both (-1)
+        if (by_frame ? *e.frame == *a.frame : std::fabs(e.time - a.time) <= near) {
+            put(matched(name, e, a));
+            settled = -1;
+        } else if (by_frame ? *e.frame < *a.frame : e.time < a.time) {
+            put(unmatched(name, e, expected_side));
+        } else {
+            put(unmatched(name, a, actual_side));
+            settled = actual_side;
+        }
+        for (const int side : {expected_side, actual_side})
+            if (settled == -1 || settled == side) p.waiting[side].pop_front(), --waiting_[side];
+    }
+}
+
+const comparison_summary& comparer::finish() {
+    for (const std::string& name : order_) {
+        pairing& p = pairs_.at(name);
+        for (const int side : {expected_side, actual_side}) {
+            for (const key& k : p.waiting[side]) put(unmatched(name, k, side));
+            waiting_[side] -= p.waiting[side].size();
+            p.waiting[side].clear();
+        }
+    }
+    return summary_;
+}
+
+void comparer::put(row_difference r) {
+    comparison_summary& s = summary_;
+    ++s.compared;
+    if (r.angle_deg) {
+        ++s.matched;
+        if (!s.worst || *r.angle_deg > *s.worst->angle_deg) s.worst = r;
+    } else {
+        ++(r.extra ? s.extra : s.missing);
+    }
+    if (!r.pass()) {
+        ++s.failed;
+        if (!s.first_failure) s.first_failure = r;
+    }
+    if (row_) row_(r);
+}
+
+row_difference comparer::matched(const std::string& name, const key& e, const key& a) const {
+    row_difference r{name, e.frame, e.time, from_radians(geodesic_angle(e.rotation, a.rotation), angle_unit::degrees),
+                     std::nullopt, std::nullopt, "", false};
+    if (*r.angle_deg > tol_.rotation_deg)
+        r.problem = fmt::format("rotation differs by {:.6g} deg (tolerance {:g})", *r.angle_deg, tol_.rotation_deg);
+    const auto vector = [&](const std::optional<vec3>& e_value, const std::optional<vec3>& a_value,
+                            std::optional<double>& difference, std::string_view what) {
+        if (!e_value) return;
+        if (!a_value) {
+            if (r.problem.empty()) r.problem = fmt::format("{} missing from ACTUAL", what);
+            return;
+        }
+        difference = norm(*e_value - *a_value);
+        if (*difference > tol_.translation && r.problem.empty())
+            r.problem = fmt::format("{} differs by {:.6g} (tolerance {:g})", what, *difference, tol_.translation);
+    };
+    vector(e.translation, a.translation, r.translation, "translation");
+    vector(e.scale, a.scale, r.scale, "scale");
+    return r;
+}
+
+row_difference comparer::unmatched(const std::string& name, const key& k, int side) const {
+    if (side == expected_side)
+        return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, "missing from ACTUAL", false};
+    return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt,
+            extra_ == extra_rows::fail ? "only in ACTUAL" : "", true};
+}
 
 comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual, const tolerances& tol,
                           extra_rows extra) {
     comparison out;
-    std::vector<std::vector<bool>> used(actual.size());
-    std::unordered_map<std::string_view, const track*> by_name;  // (names are unique within a file)
-    for (std::size_t i = 0; i < actual.size(); ++i) {
-        used[i].assign(actual[i].keys.size(), false);
-        by_name.emplace(actual[i].name, &actual[i]);
-    }
-
+    std::vector<track_survey> e_surveys, a_surveys;
+    std::unordered_map<std::string_view, const track*> by_name;
+    for (const track& t : expected) e_surveys.emplace_back(t);
+    for (const track& t : actual) a_surveys.emplace_back(t), by_name.emplace(t.name, &t);
+    comparer c(e_surveys, a_surveys, tol, extra, [&](const row_difference& r) { out.rows.push_back(r); });
+    std::unordered_set<std::string_view> fed;
+    const auto feed = [&](const track& t, bool is_expected) {
+        for (const key& k : t.keys) is_expected ? c.expected(t.name, k) : c.actual(t.name, k);
+    };
     for (const track& e : expected) {
-        const auto named = by_name.find(e.name);
-        const track* a = named == by_name.end() ? nullptr : named->second;
-        if (!a) out.missing_tracks.push_back(e.name);
-        // Frame numbers at different rates are different times: matched by time.
-        const auto has_frames = [](const track& t) {
-            return std::any_of(t.keys.begin(), t.keys.end(), [](const key& k) { return k.frame.has_value(); });
-        };
-        const bool same_rates = !a || same_frames(e, *a);
-        if (!same_rates && !out.frame_rates && has_frames(e) && has_frames(*a))
-            out.frame_rates = std::pair(counted_rate(e), counted_rate(*a));
-        const std::optional<key_finder> finder =
-            a ? std::optional<key_finder>(std::in_place, *a, same_rates,
-                                          std::max(rounding_of(e), rounding_of(*a)))
-              : std::nullopt;
-        for (const key& k : e.keys) {
-            const auto j = finder ? finder->find(k) : std::nullopt;
-            if (!j) {
-                out.rows.push_back(unmatched(e, k, "missing from ACTUAL"));
-                ++out.missing;
-                continue;
-            }
-            ++out.matched;
-            used[static_cast<std::size_t>(a - actual.data())][*j] = true;
-            const key& other = a->keys[*j];
-            row_difference r{e.name, k.frame, k.time, from_radians(geodesic_angle(k.rotation, other.rotation),
-                                                                   angle_unit::degrees),
-                             std::nullopt, std::nullopt, "", false};
-            if (*r.angle_deg > tol.rotation_deg)
-                r.problem = fmt::format("rotation differs by {:.6g} deg (tolerance {:g})", *r.angle_deg, tol.rotation_deg);
-            const auto vector = [&](const std::optional<vec3>& e_value, const std::optional<vec3>& a_value,
-                                    std::optional<double>& difference, std::string_view what) {
-                if (!e_value) return;
-                if (!a_value) {
-                    if (r.problem.empty()) r.problem = fmt::format("{} missing from ACTUAL", what);
-                    return;
-                }
-                difference = norm(*e_value - *a_value);
-                if (*difference > tol.translation && r.problem.empty())
-                    r.problem = fmt::format("{} differs by {:.6g} (tolerance {:g})", what, *difference, tol.translation);
-            };
-            vector(k.translation, other.translation, r.translation, "translation");
-            vector(k.scale, other.scale, r.scale, "scale");
-            if (!out.worst || *r.angle_deg > *out.rows[*out.worst].angle_deg) out.worst = out.rows.size();
-            out.rows.push_back(r);
-        }
+        feed(e, true);
+        if (const auto a = by_name.find(e.name); a != by_name.end()) feed(*a->second, false), fed.insert(e.name);
     }
-    std::unordered_set<std::string_view> in_expected;
-    for (const track& e : expected) in_expected.insert(e.name);
     for (const track& a : actual)
-        if (!in_expected.contains(a.name)) out.extra_tracks.push_back(a.name);
-    for (std::size_t i = 0; i < actual.size(); ++i)
-        for (std::size_t j = 0; j < actual[i].keys.size(); ++j)
-            if (!used[i][j]) {
-                row_difference r = unmatched(actual[i], actual[i].keys[j], extra == extra_rows::fail ? "only in ACTUAL" : "");
-                r.extra = true;
-                out.rows.push_back(std::move(r));
-                ++out.extra;
-            }
-    out.failed = static_cast<std::size_t>(std::count_if(out.rows.begin(), out.rows.end(), [](const auto& r) { return !r.pass(); }));
+        if (!fed.contains(a.name)) feed(a, false);
+    static_cast<comparison_summary&>(out) = c.finish();
     return out;
 }
 

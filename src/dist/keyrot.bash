@@ -28,7 +28,7 @@ _keyrot() {
         convert) flags="--output-dir --jobs $input $output" ;;
         slerp) flags="-t --steps --max-frames --from-rep $interpolation $output" ;;
         compare) flags="--tol --tol-translation --ignore-extra --report -o --output --fsync $input $conventions" ;;
-        info) flags="-o --output --fsync --to --precision $input $conventions" ;;
+        info) flags="-o --output --fsync --to --precision --segments $input $conventions" ;;
         reduce) flags="--output-dir --jobs $input $output $interpolation --tol --tol-translation --report" ;;
         help) flags="" ;;
         *) flags="--version" ;;

@@ -52,25 +52,6 @@ private:
     std::optional<track_builder> current_;
 };
 
-/// A JSON document's tracks streamed, as line-based input's are. None when
-/// the reader declines the document, or meets an error there: it is then
-/// read whole, which says what is wrong as read_json does (syntax anywhere
-/// before content). Its warnings are held back until it is known which.
-std::optional<document> read_streamed_json(const input_source& src, const read_options& ro, warnings& warn) {
-    std::optional<document> result;
-    with_held_warnings(warn, [&](warnings& attempt) {
-        document streamed{src.source(), format::json, false, {}};
-        try {
-            if (!read_keys(streamed, *src.open(), ro, attempt)) return false;
-        } catch (const std::bad_alloc&) {  // the parsing threads', say, which the whole reader does without
-            return false;
-        }
-        result = std::move(streamed);
-        return true;
-    });
-    return result;
-}
-
 }  // namespace
 
 document read_document(std::istream& in, format f, const read_options& ro, warnings& warn) {
@@ -89,11 +70,65 @@ document read_document(std::istream& in, format f, const read_options& ro, warni
     return result;
 }
 
-document read_document(const input_source& src, format f, const read_options& ro, warnings& warn,
-                       json_reading json) {
-    if (f == format::json && json == json_reading::streamed_first)
-        if (std::optional<document> streamed = read_streamed_json(src, ro, warn)) return std::move(*streamed);
-    return read_document(*src.open(), f, ro, warn);
+key_stream::key_stream(const input_source& src, format f, const read_options& ro, warnings& warn)
+    : stream_(src.open()), reader_(make_key_reader(*stream_, f, ro, warn, [] { return true; })), warn_(&warn) {}
+
+key_stream::key_stream(const document& whole) : whole_(&whole) {}
+
+bool key_stream::next(std::string& name, key& k) {
+    if (reader_) {
+        if (!reader_->next(name, raw_)) return false;
+        k = make_key(raw_, reader_->settings(), *warn_);
+        return true;
+    }
+    while (track_ < whole_->tracks.size() && key_ == whole_->tracks[track_].keys.size()) ++track_, key_ = 0;
+    if (track_ == whole_->tracks.size()) return false;
+    const keyrot::track& t = whole_->tracks[track_];
+    if (key_ == 0) settings_ = {angle_unit::degrees, t.euler, t.key_fps, false, t.interpolation};
+    name = t.name;
+    k = t.keys[key_++];
+    return true;
+}
+
+const key_settings& key_stream::settings() const { return reader_ ? reader_->settings() : settings_; }
+bool key_stream::named() const { return reader_ ? reader_->named() : whole_->named; }
+location key_stream::start() const { return reader_ ? reader_->start() : location{}; }
+
+std::optional<document> for_each_key(const input_source& src, format f, const read_options& ro, warnings& warn,
+                                     const std::function<void()>& restart,
+                                     const std::function<void(const std::string&, const key_settings&, key&&)>& each) {
+    const auto all = [&](key_stream& keys) {
+        std::string name;
+        key k;
+        bool any = false;
+        while (keys.next(name, k)) any = true, each(name, keys.settings(), std::move(k));
+        if (keys.declined()) return false;
+        if (!any) throw input_error(where(ro.source, keys.start()), "no keys: expected at least one key");
+        return true;
+    };
+    if (f != format::json) {
+        try {
+            key_stream keys(src, f, ro, warn);
+            all(keys);
+        } catch (const std::bad_alloc&) {  // a line too long for the memory there is
+            throw error(ro.source + ": out of memory");
+        }
+        return std::nullopt;
+    }
+    const bool streamed = with_held_warnings(warn, [&](warnings& attempt) {
+        try {
+            key_stream keys(src, f, ro, attempt);
+            return all(keys);
+        } catch (const std::bad_alloc&) {  // the parsing threads', say, which the whole reader does without
+            return false;
+        }
+    });
+    if (streamed) return std::nullopt;
+    restart();
+    document whole = read_document(*src.open(), f, ro, warn);
+    key_stream keys(whole);
+    all(keys);
+    return whole;
 }
 
 }  // namespace keyrot

@@ -7,7 +7,9 @@
 // prints median wall time, frames per second, peak RSS and the ratio. The
 // first track's command is also timed writing a new file each run. With
 // --baseline, another keyrot binary (say, before a change) runs the same
-// commands in the same turns, and the ratio of the two is printed.
+// commands in the same turns, and the ratio of the two is printed. Last,
+// `compare` and `info` of 200,000 and 1,000,000 resampled rows, each against
+// `resample` of the same rows.
 //
 // Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR]
 #include <fmt/format.h>
@@ -219,6 +221,24 @@ int main(int argc, char** argv) {
             print_row("scipy script (same turns)", results[1], frames);
             fmt::print("{:<34} {:>10.1f}x\n", "  ratio (scipy / keyrot)", results[1].median_s / results[0].median_s);
         }
+    }
+    // compare and info of the rows resample writes, each against resample
+    // of the same rows, in the same turns.
+    for (const std::size_t keys : {std::size_t{40000}, std::size_t{200000}}) {
+        const std::string track = fmt::format("{}/rows_track{}.csv", dir, keys);
+        const std::size_t frames = write_track(track, keys);
+        const std::string rows = dir + "/rows.csv", other = dir + "/rows_nlerp.csv";
+        run({keyrot, "resample", track, "-o", rows});
+        run({keyrot, "resample", track, "--method", "nlerp", "-o", other});
+        const auto r = repeat({{{keyrot, "resample", rows, "-o", dir + "/rows_out.csv"}},
+                               {{keyrot, "compare", rows, other, "--tol", "180"}},
+                               {{keyrot, "info", rows}}},
+                              runs);
+        print_row(fmt::format("resample of {:.1f}M rows", static_cast<double>(frames) / 1e6), r[0], frames);
+        print_row("compare of them and another", r[1], frames);
+        fmt::print("{:<34} {:>10.2f}\n", "  ratio (compare / resample)", r[1].median_s / r[0].median_s);
+        print_row("info of them", r[2], frames);
+        fmt::print("{:<34} {:>10.2f}\n", "  ratio (info / resample)", r[2].median_s / r[0].median_s);
     }
     const std::string small = dir + "/ten.csv";
     write_track(small, 10);

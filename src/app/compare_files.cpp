@@ -1,0 +1,68 @@
+#include "app/compare_files.hpp"
+
+#include <map>
+#include <sstream>
+
+#include "app/plan.hpp"
+
+namespace keyrot::detail {
+surveyed_file survey_file(const options& o, const input_source& src, warnings& warn) {
+    surveyed_file file{src.source(), {}, std::nullopt, {}, std::nullopt, false, 0};
+    std::map<std::string, std::size_t> index;
+    std::vector<key> last;  // each track's last key (tracks may interleave)
+    const auto restart = [&] {
+        file.tracks.clear(), index.clear(), last.clear(), file.given.clear();
+        file.counted = false, file.keys = 0;
+    };
+    const auto each = [&](const std::string& name, const key_settings& s, key&& k) {
+        const auto [it, added] = index.emplace(name, file.tracks.size());
+        if (added) {
+            file.tracks.emplace_back(name, s.key_fps, s.interpolation ? s.interpolation->time_rounding : 0);
+            if (file.tracks.size() == 1) file.euler = s.euler;
+            last.push_back(k);
+        } else {
+            check_order(last[it->second], k, src.source());
+        }
+        file.tracks[it->second].add(k);
+        file.given.insert(k.given_as);
+        file.counted = file.counted || (k.frame && !k.has_time);
+        ++file.keys;
+        if (!added) last[it->second] = std::move(k);
+    };
+    file.whole = for_each_key(src, src.detect(o.from), reading(o, src.source()), warn, restart, each);
+    return file;
+}
+
+comparison_summary compare_files(const options& key_flags, const input_source& key_src, const surveyed_file& key,
+                                 const options& answer_flags, const input_source& answer_src,
+                                 const surveyed_file& answer,
+                                 const std::function<void(const comparison_summary&)>& begin,
+                                 const comparer::row_sink& row) {
+    // (what pass 1 said is not said again)
+    std::ostringstream quiet;
+    warnings key_warn(quiet, key_src.source()), answer_warn(quiet, answer_src.source());
+    const auto open = [](const options& o, const input_source& src, const surveyed_file& s, warnings& warn) {
+        return s.whole ? key_stream(*s.whole) : key_stream(src, src.detect(o.from), reading(o, src.source()), warn);
+    };
+    key_stream expected = open(key_flags, key_src, key, key_warn);
+    key_stream actual = open(answer_flags, answer_src, answer, answer_warn);
+    comparer c(key.tracks, answer.tracks, {key_flags.tol_deg, key_flags.tol_translation}, key_flags.extra, row);
+    if (begin) begin(c.summary());
+    // Read from the file whose keys do not wait for the other's: files of
+    // one layout then hold a key or two each; another layout holds what it
+    // must (a track that one file gives whole before the next, the other
+    // interleaved), and no more.
+    bool more_expected = true, more_actual = true;
+    std::string name;
+    keyrot::key k;
+    while (more_expected || more_actual) {
+        if (more_expected && (!more_actual || c.waiting_expected() <= c.waiting_actual())) {
+            if ((more_expected = expected.next(name, k))) c.expected(name, std::move(k));
+        } else if ((more_actual = actual.next(name, k))) {
+            c.actual(name, std::move(k));
+        }
+    }
+    return c.finish();
+}
+
+}  // namespace keyrot::detail
