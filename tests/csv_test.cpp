@@ -100,7 +100,7 @@ TEST_CASE("CSV errors name the line and what was expected") {
     CHECK(error_of(",time,qw,qx,qy,qz,QW\n", format::csv) == "in:1: column 'qw' appears twice: expected each column once");
     CHECK(error_of("qw,qx,qy,qz\n", format::csv) == "in:1: no time column: expected a 'time' or 'frame' column");
     CHECK(error_of("time\tqw\tqx\tqy\tqz\n", format::csv) ==
-          "in:1: expected commas between the columns, got 'time\\x09qw\\x09qx\\x09qy\\x09qz'");
+          "in:1: expected commas (or semicolons) between the columns, got 'time\\x09qw\\x09qx\\x09qy\\x09qz'");
     CHECK(error_of("time,foo\n", format::csv).find("in:1: no rotation columns") == 0);
     CHECK(error_of("", format::csv) == "in: empty input: expected a CSV header and keys");
     CHECK(error_of("# c\ntime,qw,qx,qy,qz\n", format::csv) == "in:2: no keys: expected at least one key");
@@ -252,3 +252,26 @@ TEST_CASE("CSV: numpy.savetxt's commented header, pandas' unnamed index column")
     CHECK(err.str() == "keyrot: warning: in: ignoring unnamed column 1\n");
 }
 
+
+TEST_CASE("CSV: a spreadsheet's semicolons and decimal commas") {
+    // What a spreadsheet in a decimal-comma locale saves as CSV reads as
+    // the same keys as the comma-separated file with decimal points.
+    const auto semi = read_keys("track;time;ax;ay;az;angle\n\"hip;left\";0,5;0;0;1;90,25\nhip;1.5;0;0;1;-1,5e2\n",
+                                format::csv);
+    const auto comma = read_keys("track,time,ax,ay,az,angle\nhip;left,0.5,0,0,1,90.25\nhip,1.5,0,0,1,-1.5e2\n",
+                                 format::csv);
+    REQUIRE(semi.size() == 2);
+    REQUIRE(comma.size() == 2);
+    for (std::size_t i = 0; i < 2; ++i) {
+        CHECK(semi[i].first == comma[i].first);
+        CHECK(*semi[i].second.time == *comma[i].second.time);
+        CHECK(semi[i].second.values == comma[i].second.values);
+    }
+    CHECK(semi[0].first == "hip;left");
+    CHECK(semi[1].second.values[3] == -150);
+    // one decimal mark a number, and a header with commas is comma-separated
+    CHECK(error_of("time;qw;qx;qy;qz\n0;1,0,0;0;0;0\n", format::csv) ==
+          "in:2: column 'qw': expected a finite number, got '1,0,0'");
+    CHECK(error_of("time;qw;qx;qy;qz\n0;1;0;0\n", format::csv) == "in:2: expected 5 cells as in the header, got 4");
+    CHECK(error_of("time,qw;qx,qy,qz\n", format::csv).find("in:1: missing column") == 0);
+}

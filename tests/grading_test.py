@@ -248,6 +248,20 @@ with tempfile.TemporaryDirectory() as d:
     write(os.path.join(d, "grouped.csv"), header + "".join(rows(t, f) for t in ("hip", "knee") for f in range(200)))
     write(os.path.join(d, "interleaved.csv"),
           header + "".join(rows(t, f, 0.5 if (t, f) == ("knee", 150) else 0) for f in range(200) for t in ("hip", "knee")))
+    # A spreadsheet in a decimal-comma locale saves semicolons and decimal
+    # commas: read as the same numbers (3,000 rows: parsed ahead on threads
+    # as long files are); 0.5 degrees off at one frame fails there.
+    for name, off_at in (("semicolons.csv", None), ("semicolons_off.csv", 1234)):
+        turn_rows(os.path.join(d, "commas.csv"), 3000, off_at)
+        with open(os.path.join(d, "commas.csv")) as f, open(os.path.join(d, name), "w") as g:
+            g.writelines(line.replace(",", ";").replace(".", ",") for line in f)
+    turn_rows(os.path.join(d, "key3000.csv"), 3000)
+    r = keyrot("compare", "key3000.csv", "semicolons.csv", cwd=d)
+    check(r.returncode == 0 and r.stdout.startswith("3000 rows compared, 0 failed"),
+          f"a semicolon-separated answer with decimal commas: {r.stdout.strip()} {r.stderr.strip()}")
+    r = keyrot("compare", "key3000.csv", "semicolons_off.csv", cwd=d)
+    check(r.returncode == 1 and r.stdout.startswith("3000 rows compared, 1 failed; largest difference 0.5 deg at "
+                                                     "frame 1234"), f"... and one 0.5 degrees off: {r.stdout.strip()}")
     for key, answer in (("grouped.csv", "interleaved.csv"), ("interleaved.csv", "grouped.csv")):
         r = keyrot("compare", key, answer, cwd=d)
         check(r.returncode == 1 and r.stdout.startswith("400 rows compared, 1 failed; largest difference 0.5 deg at "

@@ -30,12 +30,16 @@ constexpr std::array<std::string_view, 7> matrix4_only = {"m03", "m13", "m23", "
 /// quotes, into unquoted copies). "..." quotes a cell, "" inside is a quote.
 class cell_splitter {
 public:
+    /// `separator`: ',', or ';' for the CSV of a spreadsheet whose locale
+    /// writes decimal commas.
+    explicit cell_splitter(char separator = ',') : separator_(separator) {}
+
     const std::vector<std::string_view>& split(std::string_view line, const std::string& source, std::size_t line_no) {
         cells_.clear();
         has_quotes_.clear();
         if (line.find('"') == std::string_view::npos) {  // the common case: no copies
             std::size_t start = 0;
-            for (std::size_t comma; (comma = line.find(',', start)) != std::string_view::npos; start = comma + 1)
+            for (std::size_t comma; (comma = line.find(separator_, start)) != std::string_view::npos; start = comma + 1)
                 cells_.push_back(line.substr(start, comma - start));
             cells_.push_back(line.substr(start));
             return cells_;
@@ -50,7 +54,7 @@ public:
                 if (c != '"') quoted_.back() += c;
                 else if (i + 1 < line.size() && line[i + 1] == '"') quoted_.back() += '"', ++i;
                 else quoted = false;
-            } else if (c == ',') {
+            } else if (c == separator_) {
                 quoted_.emplace_back();
                 has_quotes_.push_back(false);
             } else if (c == '"') {
@@ -75,6 +79,7 @@ public:
     }
 
 private:
+    char separator_;
     std::vector<std::string_view> cells_;
     std::deque<std::string> quoted_;  // stable addresses for the views
     std::vector<bool> has_quotes_;    // for a line with quotes: which cells had them
@@ -85,6 +90,9 @@ constexpr std::size_t max_plain_cells = 24;
 
 /// Where each known column is, resolved once from the header.
 struct columns {
+    /// ',' or ';': a semicolon-separated table, whose numbers may have a
+    /// decimal comma (what a spreadsheet saves as CSV in many locales).
+    char separator = ',';
     std::size_t count = 0;
     bool plain = false;  // no ignored columns, at most max_plain_cells: rows for csv_rows::read_plain
     std::optional<std::size_t> track, time, frame;
@@ -99,11 +107,29 @@ std::string column_list(rep r) {
     return fmt::format("{}", fmt::join(cols, " "));
 }
 
-columns parse_header(const std::vector<std::string_view>& cells, const std::string& where, warnings& warn) {
-    if (cells.size() == 1 && trim(cells[0]).find_first_of(" \t;") != std::string_view::npos)
-        throw input_error(where, fmt::format("expected commas between the columns, got '{}'",
+/// The separator of a table whose header is `line`: ';' where the header
+/// has semicolons and no commas (no column name keyrot reads has either).
+char separator_of(std::string_view header) {
+    return header.find(';') != std::string_view::npos && header.find(',') == std::string_view::npos ? ';' : ',';
+}
+
+/// A number with a decimal point, or in a semicolon-separated table a
+/// decimal comma (1,5 or 1.5).
+std::optional<double> parse_cell_number(std::string_view cell, char separator) {
+    const std::size_t comma = cell.find(',');
+    if (separator != ';' || comma == std::string_view::npos) return parse_number(cell);
+    std::string pointed(cell);
+    pointed[comma] = '.';
+    return parse_number(pointed);
+}
+
+columns parse_header(const std::vector<std::string_view>& cells, char separator, const std::string& where,
+                     warnings& warn) {
+    if (cells.size() == 1 && trim(cells[0]).find_first_of(" \t") != std::string_view::npos)
+        throw input_error(where, fmt::format("expected commas (or semicolons) between the columns, got '{}'",
                                              trim(cells[0]).substr(0, 40)));
     columns cols;
+    cols.separator = separator;
     cols.count = cells.size();
     std::map<std::string, std::size_t> index;
     for (std::size_t i = 0; i < cells.size(); ++i) {
@@ -163,7 +189,8 @@ columns parse_header(const std::vector<std::string_view>& cells, const std::stri
     if (cols.translation && cols.kind == rep::matrix4)
         throw input_error(where, "4x4 matrix and tx ty tz columns: expected one translation per key");
     cols.scale = vector_columns(scale_columns, "scale");
-    cols.plain = cols.count <= max_plain_cells && std::all_of(known.begin(), known.end(), [](bool k) { return k; });
+    cols.plain = separator == ',' && cols.count <= max_plain_cells &&
+                 std::all_of(known.begin(), known.end(), [](bool k) { return k; });
     for (std::size_t i = 0; i < cells.size(); ++i)
         if (!known[i])
             warn.once("column", trim(cells[i]).empty() ? fmt::format("ignoring unnamed column {}", i + 1)
@@ -188,7 +215,8 @@ bool skipped(std::string_view line, const std::string& source, std::size_t numbe
 /// (read_ahead).
 class csv_rows final : public line_parser {
 public:
-    csv_rows(columns cols, std::string source) : cols_(std::move(cols)), source_(std::move(source)) {}
+    csv_rows(columns cols, std::string source)
+        : cols_(std::move(cols)), source_(std::move(source)), splitter_(cols_.separator) {}
     const columns& cols() const noexcept { return cols_; }
 
     bool parse(std::string_view line, const text_place& place, std::string& track, raw_key& k) override {
@@ -200,7 +228,7 @@ public:
         if (cells.size() != cols_.count)
             throw input_error(where(), fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
         const auto number = [&](std::size_t at, std::string_view name) {
-            if (auto v = parse_number(cells[at])) return *v;
+            if (auto v = parse_cell_number(cells[at], cols_.separator)) return *v;
             throw input_error(where(), fmt::format("column '{}': expected a finite number, got '{}'", name,
                                                    trim(cells[at]).substr(0, 40)));
         };
@@ -315,7 +343,7 @@ public:
             if (comment_line != 0 && !names_time(line)) {
                 lines_.put_back();  // the first key, read with the header
                 header_line_ = comment_line;
-                rows_.emplace(parse_header(splitter.split(comment, source, comment_line),
+                rows_.emplace(parse_header(splitter.split(comment, source, comment_line), ',',
                                            fmt::format("{}:{}", source, comment_line), warn),
                               source);
                 return;
@@ -326,12 +354,14 @@ public:
                 throw input_error(where, fmt::format("expected a CSV header, got what looks like JSON ('{}'): "
                                                      "--from json or --from ndjson reads it as such",
                                                      c));
-            const auto& cells = splitter.split(line, source, lines_.number());
+            const char separator = separator_of(line);
+            cell_splitter by_separator(separator);
+            const auto& cells = by_separator.split(line, source, lines_.number());
             if (std::all_of(cells.begin(), cells.end(), [](auto c) { return parse_number(c).has_value(); }))
                 throw input_error(where, "expected a header line naming the columns (time or frame, and "
                                          "the rotation's), got a row of numbers");
             header_line_ = lines_.number();
-            rows_.emplace(parse_header(cells, where, warn), source);
+            rows_.emplace(parse_header(cells, separator, where, warn), source);
             return;
         }
         throw input_error(source, "empty input: expected a CSV header and keys");
