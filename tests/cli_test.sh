@@ -178,6 +178,10 @@ expect "compare exact in matrices" 0 "5 rows compared, 0 failed; largest differe
     "$keyrot" compare "$work/key.csv" "$work/matrix.csv"
 expect "compare negated" 0 "5 rows compared, 0 failed; largest difference 0 deg at frame 0 (0 s)" -- \
     "$keyrot" compare "$work/key.csv" "$work/negated.json"
+# a glTF file names the node of the key's unnamed track: still the same track
+"$keyrot" convert "$work/key.csv" -o "$work/key.glb"
+expect "compare with its glTF" 0 "5 rows compared, 0 failed" -- \
+    bash -c "'$keyrot' compare '$work/key.csv' '$work/key.glb' | cut -d';' -f1"
 expect "compare 0.5 off" 1 "5 rows compared, 1 failed; largest difference 0.5 deg at frame 2 (0.5 s)" -- \
     "$keyrot" compare "$work/key.csv" "$work/off.csv"
 expect "compare 0.5 off reason" 1 "keyrot: $work/off.csv: frame 2 (0.5 s): rotation differs by 0.5 deg (tolerance 0.01)" -- \

@@ -112,6 +112,15 @@ TEST_CASE("tracks are matched by name; translations are checked when expected") 
                                           {named("knee", {at(0, turned)}), named("hip", {with_t})}, {});
     CHECK(reordered.failed == 0);
     CHECK(reordered.rows.size() == 2);
+    // one unnamed track against one named track (a glTF file names its node): the same track
+    const auto renamed = compare_tracks({named("", {with_t})}, {named("track", {with_t})}, {});
+    CHECK(renamed.failed == 0);
+    CHECK(renamed.matched == 1);
+    CHECK(renamed.rows.at(0).track.empty());
+    CHECK(compare_tracks({named("hip", {with_t})}, {named("", {far_t})}, {}).failed == 1);  // (compared: 0.01 off)
+    // but two named tracks, or more than one track, are paired by name
+    CHECK(compare_tracks({named("hip", {with_t})}, {named("knee", {with_t})}, {}).matched == 0);
+    CHECK(compare_tracks({named("", {with_t}), named("b", {with_t})}, {named("a", {with_t})}, {}).matched == 0);
 }
 
 TEST_CASE("each key matches the key a scan of ACTUAL would find") {

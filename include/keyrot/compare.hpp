@@ -96,7 +96,9 @@ struct comparison_summary {
 /// or, where counted_rate is implied by times, grids that stay within half
 /// a frame of each other), else by track and time (|dt| <= tol::match_time,
 /// or either track's time rounding as stored where that is more:
-/// track_survey::rounding). A track and its negation (every q as -q)
+/// track_survey::rounding). Tracks are paired by name, but a file of one
+/// unnamed track and a file of one track of any name are the same track
+/// (rows carry EXPECTED's name). A track and its negation (every q as -q)
 /// compare equal: every angle_deg 0, failed 0.
 class comparer {
 public:
@@ -134,6 +136,7 @@ private:
     row_sink row_;
     std::unordered_map<std::string, pairing> pairs_;
     std::vector<std::string> order_;  ///< EXPECTED's tracks, then ACTUAL's own
+    std::optional<std::pair<std::string, std::string>> renamed_;  ///< ACTUAL's one track, paired with EXPECTED's
     std::size_t waiting_[2] = {0, 0};
     comparison_summary summary_;
 };

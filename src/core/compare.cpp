@@ -60,6 +60,13 @@ comparer::comparer(const std::vector<track_survey>& expected, const std::vector<
     : tol_(tol), extra_(extra), row_(std::move(row)) {
     std::unordered_map<std::string_view, const track_survey*> in_actual;  // (names are unique within a file)
     for (const track_survey& a : actual) in_actual.emplace(a.name(), &a);
+    // One track against one, either unnamed: the same track (a glTF file
+    // names the node of an unnamed track).
+    if (expected.size() == 1 && actual.size() == 1 && expected[0].name() != actual[0].name() &&
+        (expected[0].name().empty() || actual[0].name().empty())) {
+        renamed_ = std::pair(actual[0].name(), expected[0].name());
+        in_actual = {{expected[0].name(), &actual[0]}};
+    }
     for (const track_survey& e : expected) {
         pairing& p = pairs_[e.name()];
         p.in_expected = true;
@@ -78,6 +85,7 @@ comparer::comparer(const std::vector<track_survey>& expected, const std::vector<
             summary_.frame_rates = std::pair(e.counted_rate(), a.counted_rate());
     }
     for (const track_survey& a : actual) {
+        if (renamed_) break;
         pairing& p = pairs_[a.name()];
         if (p.in_expected) continue;
         p.in_actual = true;
@@ -90,11 +98,11 @@ void comparer::expected(const std::string& track, key k) { add(expected_side, tr
 void comparer::actual(const std::string& track, key k) { add(actual_side, track, std::move(k)); }
 
 void comparer::add(int side, const std::string& track, key&& k) {
-    const auto it = pairs_.find(track);
+    const auto it = pairs_.find(side == actual_side && renamed_ && track == renamed_->first ? renamed_->second : track);
     if (it == pairs_.end() || !it->second.in_expected || !it->second.in_actual) return put(unmatched(track, k, side));
     it->second.waiting[side].push_back(std::move(k));
     ++waiting_[side];
-    settle(track, it->second);
+    settle(it->first, it->second);
 }
 
 /// Pairs the first keys waiting on both sides while it can: either they
