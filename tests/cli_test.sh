@@ -204,6 +204,11 @@ expect "info nlerp speed" 0 "  0-1      15.63        125.07
 expect "info flips" 0 "  0-1      90           180  (long way with --path direct)
   keys flipped by --path shortest: 1" -- bash -c \
     "printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n0.5,-0.7071067811865476,0,0,-0.7071067811865476\n' | '$keyrot' info --segments | grep -E '0-1|flipped'"
+expect "info names the rate frame numbers count at" 0 "  frame numbers: at 24 fps, the default (--key-fps RATE for another)
+track: 2 keys, 0 s to 0.4 s, given as quat
+  frame numbers: at 30 fps, as stated" -- bash -c \
+    "printf 'frame,qw,qx,qy,qz\n0,1,0,0,0\n12,0,0,0,1\n' > '$work/frames.csv'
+     '$keyrot' info '$work/frames.csv' | grep 'frame numbers'; '$keyrot' info '$work/frames.csv' --key-fps 30 | sed -n 2,3p"
 # The summary: 0, 10, 40 and 45 degrees about z at 0, 1, 2 and 2.5 s step
 # by 10, 30 and 5 degrees; 24 keys of one rotation with every other sign
 # flipped list the first ten flips of twelve.

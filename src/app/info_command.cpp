@@ -23,7 +23,9 @@ namespace {
 struct described_track {
     track_describer keys;
     std::optional<track_interpolation> interpolation;  ///< the file's own (glTF)
+    std::optional<double> key_fps;                     ///< the rate its file or --key-fps states
     channels carried;
+    bool counted = false;  ///< some key is timed by its frame number alone
 };
 
 /// An input's tracks described, in order of first appearance.
@@ -41,7 +43,7 @@ described_file describe_file(const options& o, const input_source& src, warnings
     const auto each = [&](const std::string& name, const key_settings& s, key&& k) {
         const auto [it, added] = index.emplace(name, file.tracks.size());
         if (added) {
-            file.tracks.push_back({track_describer(name, s.euler, o.segments), s.interpolation, {}});
+            file.tracks.push_back({track_describer(name, s.euler, o.segments), s.interpolation, s.key_fps, {}});
             last.push_back(k.time);
         } else {
             key previous;
@@ -51,6 +53,7 @@ described_file describe_file(const options& o, const input_source& src, warnings
         }
         file.tracks[it->second].keys.add(k);
         file.tracks[it->second].carried |= channels_of(k);
+        file.tracks[it->second].counted = file.tracks[it->second].counted || (k.frame && !k.has_time);
     };
     for_each_key(src, file.fmt, reading(o, src.source()), warn, restart, each);
     return file;
@@ -108,6 +111,10 @@ std::string info_text(const described_file& file, std::optional<int> precision, 
             for (const auto& [channel, how] : interpolations(file.tracks[n])) each.push_back(fmt::format("{} {}", channel, how));
             out += fmt::format("  interpolation: {}\n", fmt::join(each, ", "));
         }
+        if (const described_track& d = file.tracks[n]; d.counted)
+            out += d.key_fps ? fmt::format("  frame numbers: at {} fps, as stated\n", num(*d.key_fps))
+                             : fmt::format("  frame numbers: at {} fps, the default (--key-fps RATE for another)\n",
+                                           default_key_fps);
         if (t.keys > 1) {
             const double rate = static_cast<double>(t.keys - 1) / (t.end - t.start);
             out += t.even() ? fmt::format("  spacing: every {} s ({} keys/s)\n", num(t.shortest_gap), num(rate))
@@ -158,6 +165,10 @@ std::string info_json(const described_file& file, bool segments, const bvh_sourc
                                num(s.speed_deg_s), t.signed_keys ? fmt::format("{}", s.direct_long_way) : "null");
         };
         std::string more;
+        if (file.tracks[n].counted)
+            more += fmt::format(", \"key_fps\": {}, \"key_fps_stated\": {}",
+                                num(file.tracks[n].key_fps.value_or(default_key_fps)),
+                                file.tracks[n].key_fps.has_value());
         if (t.keys > 1)
             more += fmt::format(", \"shortest_gap\": {}, \"longest_gap\": {}, \"largest_segment\": {{\"from\": {}, "
                                 "\"start\": {}, \"end\": {}, \"angle\": {}, \"speed\": {}}}",
