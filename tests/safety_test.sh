@@ -11,6 +11,11 @@ trap 'rm -rf "$work"' EXIT
 # shellcheck source=tests/expect.sh
 source "$(dirname "$0")/expect.sh"
 cd "$work" || exit 1
+# As root, the keyrot under test runs from a directory of mode 700, as a
+# checkout in root's home does: what a second user runs is copied out.
+if [[ $(id -u) == 0 ]]; then
+    mkdir -m 700 home && cp "$keyrot" home/keyrot && keyrot=$work/home/keyrot
+fi
 cp "$data/walk.csv" walk.csv
 "$keyrot" resample walk.csv --fps 1 > walk1.csv
 
@@ -39,11 +44,27 @@ expect_error "-o onto a link loop" "keyrot: cannot write 'loop_a': Too many leve
 # ---- another user's link, a read-only file, a set-user-ID file (root can make a second user)
 other=keyrot-test-other
 if [[ $(id -u) == 0 ]] && { id "$other" >/dev/null 2>&1 || useradd -M -s /usr/sbin/nologin "$other" 2>/dev/null; }; then
+    # What the second user runs is where that user can reach it: the build
+    # may be in a directory of mode 700 (root's home, where root clones).
+    mkdir -m 755 reach && cp "$keyrot" reach/keyrot
+    su -s /bin/sh "$other" -c "reach/keyrot --version" >/dev/null 2>&1 ||
+        fail "the second user cannot run a copy of keyrot in $work/reach"
     mkdir -m 1777 shared
     echo precious > victim.txt
     su -s /bin/sh "$other" -c "ln -s '$work/victim.txt' shared/walk.csv && ln -s '$work/victim.txt' shared/result.csv"
-    expect_error "--output-dir: another user's link" "keyrot: cannot write 'shared/walk.csv': 'shared/walk.csv' is a symbolic link of another user (uid $(id -u "$other")): expected a file, or a link of yours or of the directory's owner" -- \
-        "$keyrot" resample walk.csv --output-dir shared
+    expect "--output-dir: another user's link is replaced, not written through" 0 "precious
+regular file
+$(cat walk1.csv)" -- bash -c "'$keyrot' resample walk.csv --fps 1 --output-dir shared && cat victim.txt && stat -c %F shared/walk.csv && cat shared/walk.csv"
+    # A directory the other user made, with a link to root's file planted in it.
+    su -s /bin/sh "$other" -c "mkdir shared/out && ln -s ../../victim.txt shared/out/walk.csv"
+    expect "--output-dir of another user's: its link is replaced" 0 "precious
+regular file" -- bash -c "'$keyrot' resample walk.csv --output-dir shared/out && cat victim.txt && stat -c %F shared/out/walk.csv"
+    # Root replacing another user's file keeps its owner, group and mode.
+    cp walk.csv theirs.csv && chown "$other:$other" theirs.csv && chmod 640 theirs.csv
+    expect "root replacing another user's file keeps its owner" 0 "$other $other 640" -- \
+        bash -c "'$keyrot' resample walk.csv -o theirs.csv && stat -c '%U %G %a' theirs.csv"
+    expect "... into --output-dir too" 0 "$other $other 640" -- \
+        bash -c "cp -p theirs.csv shared/theirs.csv && '$keyrot' resample theirs.csv --output-dir shared && stat -c '%U %G %a' shared/theirs.csv"
     expect_error "-o: another user's link" "keyrot: cannot write 'shared/result.csv': 'shared/result.csv' is a symbolic link of another user (uid $(id -u "$other")): expected a file, or a link of yours or of the directory's owner" -- \
         "$keyrot" resample walk.csv -o shared/result.csv
     su -s /bin/sh "$other" -c "ln -s /dev/null shared/device.csv"
@@ -54,7 +75,7 @@ if [[ $(id -u) == 0 ]] && { id "$other" >/dev/null 2>&1 || useradd -M -s /usr/sb
     mkdir -m 777 open && cp walk.csv open/readonly.csv && chmod 444 open/readonly.csv && chown "$other" open
     expect "a 0444 file is refused, as > refuses it" 0 "keyrot: cannot write 'open/readonly.csv': Permission denied
 2
-$(cat walk.csv)" -- bash -c "su -s /bin/sh $other -c \"'$keyrot' resample walk.csv -o open/readonly.csv; echo \\\$?\" 2>&1; cat open/readonly.csv"
+$(cat walk.csv)" -- bash -c "su -s /bin/sh $other -c \"reach/keyrot resample walk.csv -o open/readonly.csv; echo \\\$?\" 2>&1; cat open/readonly.csv"
     touch setuid.csv && chmod 4755 setuid.csv
     expect "the set-user-ID bit is not passed on" 0 "755" -- bash -c "'$keyrot' resample walk.csv -o setuid.csv && stat -c %a setuid.csv"
 else

@@ -344,6 +344,7 @@ struct transform_plan {
 write_options writing_for(const transform_plan& p, const input_source& src, const document_facts& d, warnings& warn) {
     write_options w = writing(p.flags, d.tracks.front().euler);
     w.commit.batch = p.batch;
+    w.commit.follow_links = !p.flags.output_dir;
     if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = read_gltf_source(*src.open(), p.in, p.reading, warn);
     // A glTF output of a BVH input makes its hierarchy the nodes.
     if (is_gltf(p.out) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);

@@ -182,12 +182,19 @@ output_file::output_file(std::string path, commit_mode mode) : path_(std::move(p
         if (fd_ < 0) fail(errno);
         return;
     }
-    const auto existing = status_of(path_);
     // Through a symbolic link (or /dev/stdout redirected to a file), the
     // file it names is replaced and the link kept; another user's link is
-    // refused, whatever it names (a device too).
-    target_ = resolve(path_);
-    if (!is_replaced(path_, existing)) {  // a device or a pipe: nothing to replace
+    // refused, whatever it names (a device too). Where links are not
+    // followed, only a regular file at the name is a file to replace as
+    // such: anything else there (a link, a FIFO) is renamed over.
+    std::optional<struct stat> existing = status_of(path_);
+    if (!mode_.follow_links) {
+        struct stat st;
+        if (::lstat(path_.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) existing.reset();
+        else existing = st;
+    }
+    target_ = mode_.follow_links ? resolve(path_) : path_;
+    if (mode_.follow_links && !is_replaced(path_, existing)) {  // a device or a pipe: nothing to replace
         fd_ = ::open(path_.c_str(), O_WRONLY | O_CLOEXEC);
         if (fd_ < 0) fail(errno);
         return;
@@ -218,6 +225,9 @@ output_file::output_file(std::string path, commit_mode mode) : path_(std::move(p
         ::umask(m);
         return m;
     }();
+    // Root keeps the owner and group of the file it replaces (chown before
+    // chmod, which chown would otherwise undo in part).
+    if (existing && ::geteuid() == 0 && ::fchown(fd_, existing->st_uid, existing->st_gid) != 0) fail(errno);
     ::fchmod(fd_, existing ? existing->st_mode & 0777 : 0666 & ~mask);
 }
 

@@ -22,6 +22,10 @@ class durable_batch;
 struct commit_mode {
     bool fsync = false;
     durable_batch* batch = nullptr;
+    /// -o PATH through a symbolic link replaces the file it names (as
+    /// output_file says); --output-dir replaces whatever sits at the name
+    /// (a link is renamed over, never written through).
+    bool follow_links = true;
 };
 
 /// Whether output to `path` goes to a temporary file renamed into place (a
@@ -36,11 +40,13 @@ bool replaced_on_commit(const std::string& path);
 void write_to_stream(std::ostream& out, std::string_view text);
 
 /// A temporary file beside `path` (beside the file it links to, for a
-/// symbolic link of the caller's or of the directory's owner), written in
-/// pieces and renamed into place by commit() as `mode` says (or handed to
-/// its batch, which renames it), so `path` is either untouched or complete; the
-/// file keeps the permission bits of the one it replaces (not set-user-ID
-/// or set-group-ID), and a file the caller may not write is refused.
+/// symbolic link of the caller's or of the directory's owner, unless
+/// `mode` follows no link), written in pieces and renamed into place by
+/// commit() as `mode` says (or handed to its batch, which renames it), so
+/// `path` is either untouched or complete; the file keeps the permission
+/// bits of the one it replaces (not set-user-ID or set-group-ID), and, when
+/// root replaces it, its owner and group, as `sed -i` does; a file the
+/// caller may not write is refused.
 /// Destroyed without commit(), or on SIGINT, SIGTERM or SIGHUP, it removes
 /// the temporary file. A device, a pipe or a descriptor (/dev/stdout) is
 /// written straight into instead. Throws keyrot::error ("cannot write
