@@ -50,9 +50,9 @@ void add_input_flags(CLI::App& sub, options& o, raw_flags& f) {
                    fmt::format("frame rate of 'frame' keys (default: the file's, else 24{})",
                                sub.get_name() == "resample" ? ", whatever --fps is" : ""));
     sub.add_option("--max-bytes", o.max_bytes,
-                   fmt::format("most bytes a CSV or NDJSON line, a JSON document or a glTF file read whole, may take (default {}: "
-                               "{} MiB)",
-                               default_max_bytes, default_max_bytes >> 20));
+                   fmt::format("most bytes a CSV, NDJSON or BVH line (default {} MiB), or a JSON document or a glTF "
+                               "file read whole (default {} MiB), may take",
+                               default_max_line_bytes >> 20, default_max_bytes >> 20));
     sub.add_option("--animation", o.animation, "glTF: the one animation to read, by name or index (default: all)");
 }
 
@@ -164,7 +164,7 @@ void finish(options& o, const raw_flags& f) {
     if (!f.method.empty()) o.how = parse<method>(f.method);
     o.way = *parse<path>(f.path);
     check_rate("--fps", o.fps);
-    if (o.max_bytes < 1) throw usage_error("--max-bytes: expected at least 1 byte, got 0");
+    if (o.max_bytes && *o.max_bytes < 1) throw usage_error("--max-bytes: expected at least 1 byte, got 0");
     if (!(std::isfinite(o.max_frames) && o.max_frames >= 1))
         throw usage_error(fmt::format("--max-frames: expected a number of frames, at least 1, got {}", o.max_frames));
     if (f.jobs) {

@@ -287,8 +287,10 @@ done
 
 # A single 100 MB line (generated, not checked in), in CSV and in JSON.
 { printf 'time,qw,qx,qy,qz\n0,'; head -c 100000000 /dev/zero | tr '\0' '1'; printf ',0,0,0\n'; } > long_line.csv
-expect_error "100 MB CSV line" "keyrot: long_line.csv:2: column 'qw': expected a finite number, got '1111111111111111111111111111111111111111'" -- \
+expect_error "100 MB CSV line, by default" "keyrot: long_line.csv:2: line longer than 1048576 bytes: expected the lines of a keyframe table (--max-bytes N raises the limit)" -- \
     "$keyrot" resample long_line.csv
+expect_error "100 MB CSV line, --max-bytes 200000000" "keyrot: long_line.csv:2: column 'qw': expected a finite number, got '1111111111111111111111111111111111111111'" -- \
+    "$keyrot" resample long_line.csv --max-bytes 200000000
 { printf '{"rep": "'; head -c 100000000 /dev/zero | tr '\0' 'x'; printf '", "keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "quat": [1, 0, 0]}]}'; } > long_line.json
 expect_error "100 MB JSON line" "keyrot: long_line.json: keys[1]: 'quat': expected an array of 4 numbers, got 3 elements" -- \
     "$keyrot" resample long_line.json
@@ -304,7 +306,7 @@ if (ulimit -v 200000 && "$keyrot" --version) >/dev/null 2>&1; then
     expect_error "out of memory, batch" "keyrot: long_line.json: out of memory" -- \
         bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" resample long_line.json "$tests/../data/turntable.csv" --output-dir "$work/batch" --jobs 1
     expect_error "out of memory, CSV line" "keyrot: long_line.csv: out of memory" -- \
-        bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" resample long_line.csv
+        bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" resample long_line.csv --max-bytes 300000000
     expect_error "out of memory, info" "keyrot: long_line.json: out of memory" -- \
         bash -c 'ulimit -v 200000 && exec "$@"' _ "$keyrot" info long_line.json
     # slerp writes its rows as it makes them: five million in 200 MB.

@@ -20,3 +20,8 @@ def peak_kb(keyrot, args, cwd=None):
                          cwd=cwd, env=dict(os.environ, ASAN_OPTIONS=asan))
     status, kb = out.stdout.split()
     return int(status), int(kb)
+
+
+if __name__ == "__main__":
+    # peak.py KEYROT ARGS...: prints the status and the peak (KB) of one run.
+    print(*peak_kb(sys.argv[1], sys.argv[2:]))

@@ -5,6 +5,7 @@
 set -u
 keyrot=$1
 data=$2
+tests=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 chmod 755 "$work"
 trap 'rm -rf "$work"' EXIT
@@ -161,6 +162,18 @@ expect_error "a JSON document past --max-bytes" "keyrot: <stdin>: JSON document 
 for from in csv json ndjson; do
     expect "random bytes as $from" 0 "2 1" -- timeout 60 bash -c \
         "head -c 10000000 /dev/urandom | '$keyrot' resample --from $from > random.out 2> random.err; echo \$? \$(wc -l < random.err)"
+done
+# By default a line may take 1 MiB (a JSON document or a glTF file 256 MiB),
+# and input that cannot begin a glTF file is not read on: endless junk in
+# any format ends in one line and a small peak (measured from outside).
+expect_error "/dev/zero as CSV, by default" "keyrot: /dev/zero:1: line longer than 1048576 bytes: expected the lines of a keyframe table (--max-bytes N raises the limit)" -- \
+    timeout 60 "$keyrot" resample /dev/zero
+for source in /dev/zero /dev/urandom; do
+    for from in csv ndjson json gltf glb bvh; do
+        expect "$source as $from: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \
+            "read status kb < <(python3 '$tests/peak.py' '$keyrot' resample $source --from $from 2>/dev/null)
+             echo \$status \$( ((kb < 65536)) && echo small || echo \$kb KB)"
+    done
 done
 
 # ---- what a message quotes stays readable; control bytes never reach a terminal raw

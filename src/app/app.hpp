@@ -39,7 +39,9 @@ struct options {
     std::optional<method> how;  ///< --method; by default a glTF sampler's own, else slerp
     path way = path::shortest;
     double max_frames = resample_options{}.max_frames;  ///< per track (--max-frames)
-    std::size_t max_bytes = default_max_bytes;         ///< a line or a JSON document read whole (--max-bytes)
+    /// --max-bytes: a line, a JSON document or a glTF file read whole (none: default_max_line_bytes for
+    /// a line, default_max_bytes for a document)
+    std::optional<std::size_t> max_bytes;
     std::optional<std::string> animation;              ///< --animation: glTF, the one animation to read
     unsigned jobs = 0;      ///< --jobs: files converted at once; 0 = the number of cores
     bool progress = false;  ///< a progress line on err for several files (main: when stderr is a terminal)

@@ -25,7 +25,8 @@ read_options reading(const options& o, const std::string& source) {
     ro.order = o.order;
     ro.given.angles = o.radians;
     ro.given.order = o.order_given;
-    ro.max_bytes = o.max_bytes;
+    ro.max_bytes = o.max_bytes.value_or(default_max_bytes);
+    ro.max_line_bytes = o.max_bytes.value_or(default_max_line_bytes);
     ro.animation = o.animation;
     return ro;
 }

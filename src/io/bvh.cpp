@@ -236,7 +236,7 @@ private:
 /// A BVH file's frame lines after its header, a line of numbers at a time.
 class bvh_frames {
 public:
-    bvh_frames(std::istream& in, const read_options& ro) : source_(ro.source), lines_(in, ro.max_bytes, ro.source) {
+    bvh_frames(std::istream& in, const read_options& ro) : source_(ro.source), lines_(in, ro.max_line_bytes, ro.source) {
         header_ = header_parser(lines_, ro.source).parse();
         for (const bvh_joint& j : header_.joints) width_ += j.channels.size();
         if (width_ == 0) throw input_error(source_, "no joint has CHANNELS: expected some channels to read");
@@ -432,7 +432,7 @@ void check_bvh_frames(std::istream& in, const read_options& ro) {
 }
 
 std::shared_ptr<bvh_source> read_bvh_source(std::istream& in, const read_options& ro) {
-    line_reader lines(in, ro.max_bytes, ro.source);
+    line_reader lines(in, ro.max_line_bytes, ro.source);
     return std::make_shared<bvh_source>(header_parser(lines, ro.source).parse());
 }
 

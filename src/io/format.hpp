@@ -20,9 +20,12 @@ inline constexpr std::array<enum_name<format>, 6> names_of<format> = {{{format::
                                                                       {format::bvh, "bvh"}}};
 /// glTF 2.0, JSON or binary.
 constexpr bool is_gltf(format f) noexcept { return f == format::gltf || f == format::glb; }
-/// Most bytes a CSV or NDJSON line, or a JSON document read whole, may take
+/// Most bytes a JSON document or a glTF file read whole may take
 /// (--max-bytes): endless input (/dev/zero) ends in an error, not in all memory.
 inline constexpr std::size_t default_max_bytes = std::size_t{256} << 20;
+/// Most bytes a line of CSV, NDJSON or BVH may take unless --max-bytes says:
+/// far more than any keyframe's line, far less than memory.
+inline constexpr std::size_t default_max_line_bytes = std::size_t{1} << 20;
 
 /// ".csv" -> csv, ".json" -> json, ".ndjson" / ".jsonl" -> ndjson, ".gltf", ".glb", ".bvh".
 std::optional<format> format_of_path(std::string_view path);

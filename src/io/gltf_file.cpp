@@ -240,6 +240,16 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
     return {bytes.substr(offset, length), unsigned_member(bv, "byteStride", 0, here)};
 }
 
+/// Whether `start` (the first bytes read, at least one) could begin a
+/// glTF file: a GLB's magic, or JSON's '{' after any byte-order mark and
+/// white space.
+bool could_begin_gltf(std::string_view start, format f) {
+    if (f == format::glb) return std::string_view("glTF").starts_with(start.substr(0, 4));
+    if (start.starts_with("\xEF\xBB\xBF")) start.remove_prefix(3);
+    const std::size_t first = start.find_first_not_of(" \t\r\n");
+    return first == std::string_view::npos || start[first] == '{';
+}
+
 }  // namespace
 
 std::size_t unsigned_member(const gltf_json& object, const char* name, std::size_t fallback, const std::string& at) {
@@ -311,8 +321,12 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
         in.clear();
         in.seekg(0);
         in.clear();
-        for (char chunk[1 << 16]; bytes.size() <= max_bytes && (in.read(chunk, sizeof chunk) || in.gcount() > 0);)
+        // Input that cannot begin a glTF file (/dev/zero, say) is not read
+        // on to the limit: what came is parsed, which says what is wrong.
+        for (char chunk[1 << 16]; bytes.size() <= max_bytes && (in.read(chunk, sizeof chunk) || in.gcount() > 0);) {
             bytes.append(chunk, static_cast<std::size_t>(in.gcount()));
+            if (!could_begin_gltf(bytes, f)) break;
+        }
     }
     if (bytes.size() > max_bytes)
         throw input_error(

@@ -27,9 +27,11 @@ struct read_options {
     struct {
         bool angles = false, order = false;
     } given;
-    /// Most bytes a CSV or NDJSON line, or a JSON document read whole, may
-    /// take: endless input (/dev/zero) ends in an error, not in all memory.
+    /// Most bytes a JSON document or a glTF file read whole may take, and a
+    /// line of CSV, NDJSON or BVH: endless input (/dev/zero) ends in an
+    /// error, not in all memory.
     std::size_t max_bytes = default_max_bytes;
+    std::size_t max_line_bytes = default_max_line_bytes;
     /// glTF: the one animation to read, by name or index (--animation).
     std::optional<std::string> animation;
 };

@@ -318,7 +318,7 @@ private:
 class csv_reader final : public line_key_reader {
 public:
     csv_reader(std::istream& in, const read_options& opts, warnings& warn)
-        : lines_(in, opts.max_bytes, opts.source), settings_(opts.settings) {
+        : lines_(in, opts.max_line_bytes, opts.source), settings_(opts.settings) {
         // numpy.savetxt writes its header as a comment ("# time,qw,..."):
         // the last comment before the first row is the header when it names
         // a time column and the row does not.

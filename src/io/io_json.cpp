@@ -300,7 +300,7 @@ private:
 class ndjson_reader final : public line_key_reader {
 public:
     ndjson_reader(std::istream& in, const read_options& opts, warnings& warn)
-        : lines_(in, opts.max_bytes, opts.source), settings_(opts.settings), keys_(opts.source, opts.order) {
+        : lines_(in, opts.max_line_bytes, opts.source), settings_(opts.settings), keys_(opts.source, opts.order) {
         std::string_view line;
         bool found = false;
         while (!found && lines_.next(line)) found = !trim(line).empty();
