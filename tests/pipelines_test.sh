@@ -193,6 +193,20 @@ expect "1e-400 in CSV and JSON alike" 0 "0,1,0,0,0
     printf '{\"keys\": [{\"time\": 0, \"quat\": [1, 1e-400, 0, 0]}]}' | '$keyrot' convert --rep quat --to csv | tail -n 1"
 
 # ---- every flag a command lists does what it says
+# Warnings in one order whatever the target: the input's (a quaternion of
+# norm 2 at line 6), then the output's (gimbal lock at 0.5 s, written
+# before line 6 is read when the output streams into a file).
+{ printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n0.5,0.7071067811865476,0,0.7071067811865476,0\n1,1,0,0,0\n1.5,1,0,0,0\n2,2,0,0,0\n'
+  for i in $(seq 3 3000); do echo "$i,1,0,0,0"; done; } > order.csv
+for to in csv json ndjson; do
+    expect "warnings in one order, $to" 0 "same
+keyrot: warning: order.csv: quaternion norm 2 differs from 1 by more than 0.001 (order.csv:6); such keys are normalised
+keyrot: warning: order.csv: gimbal lock in Euler sequence ZYX: the third angle is set to 0" -- bash -c \
+        "'$keyrot' resample order.csv --rep euler --out-euler ZYX --to $to 2> e_stdout.txt > /dev/null
+         '$keyrot' resample order.csv --rep euler --out-euler ZYX -o order_out.$to 2> e_file.txt
+         rm -rf order_dir; '$keyrot' resample order.csv --rep euler --out-euler ZYX --to $to --output-dir order_dir 2> e_dir.txt
+         cmp -s e_stdout.txt e_file.txt && cmp -s e_file.txt e_dir.txt && echo same; cat e_file.txt"
+done
 expect "info -o info.json writes JSON" 0 "walk.csv 2" -- bash -c \
     "'$keyrot' info walk.csv -o info.json && /usr/bin/env python3 -c 'import json; d = json.load(open(\"info.json\")); print(d[\"source\"], len(d[\"tracks\"]))'"
 # (arm_wave's samplers: shoulder's rotation and translation LINEAR, the wrist's rotation STEP)

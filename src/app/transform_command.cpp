@@ -458,9 +458,13 @@ void whole_rows(const transform_plan& p, const document& doc, const document_fac
 /// guessed from the first key instead. When a guess proves wrong, the
 /// reader declines the document, or anything fails, the temporary file is
 /// dropped and false returned: the two passes then give the output or the
-/// error they always give. Warnings are held back until it is known which.
+/// error they always give. Warnings are held back until it is known which;
+/// the output's (gimbal lock) come after the input's, as the two passes
+/// give them.
 bool transform_in_one_pass(const transform_plan& p, const input_source& src, std::ostream& out, warnings& warn) {
     return with_held_warnings(warn, [&](warnings& attempt) {
+        std::ostringstream output_held;
+        warnings output_warn(output_held, src.source());
         document_facts guess;
         {
             const auto stream = src.open();
@@ -471,13 +475,15 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
             guess.add(name, reader->settings(), make_key(raw, reader->settings(), attempt));
             guess.named = reader->named();
         }
-        const auto table = open_table(p.out, p.target, out, p.rows->table(guess), writing_for(p, src, guess, attempt), attempt);
+        const auto table =
+            open_table(p.out, p.target, out, p.rows->table(guess), writing_for(p, src, guess, attempt), output_warn);
         const std::optional<document_facts> seen = stream_rows(p, src, nullptr, *table, attempt);
         if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
         p.rows->check(*seen, attempt);
         for (const auto& t : seen->tracks)
             if (t.carried != channels_of(t.first)) return false;
         table->finish();
+        attempt.adopt(output_warn, output_held.str());
         return true;
     });
 }
