@@ -6,6 +6,12 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <type_traits>
+
+#include <unistd.h>
 #include <set>
 
 #include "ground/text.hpp"
@@ -337,16 +343,113 @@ private:
     bool at_end_ = false;
 };
 
+/// A column of numbers per channel, frame after frame, kept in a temporary
+/// file (unlinked at once) in blocks of a few thousand frames, so that
+/// memory does not grow with the take: a block of every channel is
+/// gathered, then written; a value is read back with its channel's block.
+/// Where no temporary file can be made, the blocks stay in memory.
+class column_store {
+public:
+    explicit column_store(std::size_t width)
+        : width_(width),
+          block_(std::clamp<std::size_t>((std::size_t{1} << 18) / width, 64, 4096)),
+          filling_(width * block_),
+          cached_(width, SIZE_MAX),
+          cache_(width * block_),
+          file_(std::tmpfile()) {}
+    column_store(const column_store&) = delete;
+    column_store& operator=(const column_store&) = delete;
+    ~column_store() {
+        if (file_) std::fclose(file_);
+    }
+
+    /// Appends a frame's values (width of them).
+    void push(const double* row) {
+        const std::size_t at = frames_ % block_;
+        for (std::size_t c = 0; c < width_; ++c) filling_[c * block_ + at] = row[c];
+        if (++frames_ % block_ == 0) flush();
+    }
+
+    /// The value of channel `c` at `frame` (read in order within a channel).
+    double at(std::size_t c, std::size_t frame) {
+        const std::size_t block = frame / block_, offset = frame % block_;
+        if (block == frames_ / block_) return filling_[c * block_ + offset];  // not written yet
+        if (cached_[c] != block) load(c, block);
+        return cache_[c * block_ + offset];
+    }
+
+private:
+    void flush() {
+        if (!file_) {
+            held_.insert(held_.end(), filling_.begin(), filling_.end());
+            return;
+        }
+        const std::size_t start = (frames_ / block_ - 1) * width_ * block_;
+        if (!transfer(::pwrite, filling_.data(), filling_.size(), start))
+            throw error(fmt::format("cannot store a BVH file's frames in a temporary file: {}", std::strerror(errno)));
+    }
+    void load(std::size_t c, std::size_t block) {
+        double* into = cache_.data() + c * block_;
+        const std::size_t start = (block * width_ + c) * block_;
+        if (!file_) std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(start), block_, into);
+        else if (!transfer(::pread, into, block_, start))
+            throw error(fmt::format("cannot read a BVH file's frames back from a temporary file: {}",
+                                    std::strerror(errno)));
+        cached_[c] = block;
+    }
+    /// `count` values at value `start` of the file, by pread or pwrite, whole.
+    template <class Io, class Buffer>
+    bool transfer(Io io, Buffer* values, std::size_t count, std::size_t start) {
+        auto* bytes = reinterpret_cast<std::conditional_t<std::is_const_v<Buffer>, const char*, char*>>(values);
+        std::size_t left = count * sizeof(double), offset = start * sizeof(double);
+        while (left > 0) {
+            const ssize_t n = io(::fileno(file_), bytes, left, static_cast<off_t>(offset));
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) return false;
+            bytes += n, left -= static_cast<std::size_t>(n), offset += static_cast<std::size_t>(n);
+        }
+        return true;
+    }
+
+    std::size_t width_, block_;
+    std::size_t frames_ = 0;
+    std::vector<double> filling_;       // the block being gathered, channel after channel
+    std::vector<std::size_t> cached_;   // each channel's block in cache_
+    std::vector<double> cache_;
+    std::FILE* file_;
+    std::vector<double> held_;  // the written blocks, without a temporary file
+};
+
+/// Each frame's line number, held as the first frame's and the places
+/// where blank lines shift the rest (none, in most files): a long take's
+/// line numbers would otherwise grow with it.
+class frame_lines {
+public:
+    void push_back(std::size_t line) {
+        const std::size_t frame = count_++;
+        if (frame == 0) first_ = line;
+        else if (line != first_ + frame + shift()) shifts_.emplace_back(frame, line - first_ - frame);
+    }
+    std::size_t size() const noexcept { return count_; }
+    std::size_t operator[](std::size_t frame) const {
+        const auto after = std::upper_bound(shifts_.begin(), shifts_.end(), frame,
+                                            [](std::size_t f, const auto& s) { return f < s.first; });
+        return first_ + frame + (after == shifts_.begin() ? 0 : std::prev(after)->second);
+    }
+
+private:
+    std::size_t shift() const noexcept { return shifts_.empty() ? 0 : shifts_.back().second; }
+    std::size_t first_ = 0, count_ = 0;
+    std::vector<std::pair<std::size_t, std::size_t>> shifts_;  // (first frame shifted, lines skipped before it)
+};
+
 /// A BVH file's keys joint after joint: the frames read whole into a column
 /// of numbers per channel (a frame-major file gives its joints' keys one
-/// joint after another).
+/// joint after another), kept in a temporary file.
 class bvh_keys final : public key_reader {
 public:
     bvh_keys(std::istream& in, const read_options& ro) : frames_(in, ro), columns_(frames_.width()) {
-        // (A reservation is address space, not memory, until the frames fill it.)
-        const std::size_t frames = frames_.header().frames;
-        for (auto& c : columns_) c.reserve(std::min<std::size_t>(frames, (std::size_t{1} << 26) / columns_.size()));
-        row_.resize(columns_.size());
+        row_.resize(frames_.width());
     }
 
     bool next(std::string& track, raw_key& k) override {
@@ -357,7 +460,7 @@ public:
         read_lines(joint_ == 0 && frame_ + 1 < h.frames ? frame_ + 1 : SIZE_MAX);
         track = h.joints[joint_].name;
         settings_ = &frames_.settings(joint_);
-        frames_.key_of(joint_, frame_, frame_lines_[frame_], [&](std::size_t c) { return columns_[column_ + c][frame_]; },
+        frames_.key_of(joint_, frame_, frame_lines_[frame_], [&](std::size_t c) { return columns_.at(column_ + c, frame_); },
                        k);
         if (++frame_ == h.frames) frame_ = 0, column_ += h.joints[joint_].channels.size(), ++joint_;
         return true;
@@ -370,15 +473,15 @@ private:
     /// Reads frame lines until `count` frames are in (SIZE_MAX: all of them).
     void read_lines(std::size_t count) {
         while (frame_lines_.size() < count && frames_.read(row_.data())) {
-            for (std::size_t c = 0; c < row_.size(); ++c) columns_[c].push_back(row_[c]);
+            columns_.push(row_.data());
             frame_lines_.push_back(frames_.line());
         }
     }
 
     bvh_frames frames_;
-    std::vector<std::vector<double>> columns_;  // per channel, frame after frame
-    std::vector<double> row_;                   // the line being read
-    std::vector<std::size_t> frame_lines_;      // each frame's line
+    column_store columns_;                    // per channel, frame after frame
+    std::vector<double> row_;                 // the line being read
+    frame_lines frame_lines_;                 // each frame's line
     const key_settings* settings_ = nullptr;
     std::size_t joint_ = 0, column_ = 0, frame_ = 0;
 };
