@@ -110,6 +110,13 @@ with tempfile.TemporaryDirectory() as d:
           "xyzw.ndjson: the hint names --quat-order xyzw")
     check("--key-fps" in by.get("frames4.csv", {}).get("reason", ""), "frames4.csv: the hint names --key-fps")
     check("no time column" in by.get("unreadable.csv", {}).get("reason", ""), "unreadable.csv: the reason is given")
+    # A JSON document with its settings after its keys is read whole (not
+    # streamed): its hint reads it again the other way too.
+    keys = ", ".join(f'{{"time": {t!r}, "axis": [0, 0, 1], "angle": {math.radians(a)!r}}}' for t, a in zip(TIMES, ANGLES))
+    write(os.path.join(d, "radians_late.json"), f'{{"keys": [{keys}], "fps": 24}}')
+    late = keyrot("compare", "key.csv", "radians_late.json", cwd=d)
+    check(late.returncode == 1 and "read as radians (--radians)" in late.stdout,
+          f"a JSON document read whole: the hint names --radians: {late.stdout.strip()}")
     over = by.get("over.csv", {})
     check(abs(float(over.get("max_difference") or "nan") - 0.0101) < 1e-9, f"over.csv: max difference 0.0101: {over}")
     check("2 pass, 6 fail, 2 unreadable" in r.stderr,
