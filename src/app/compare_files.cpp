@@ -1,6 +1,5 @@
 #include "app/compare_files.hpp"
 
-#include <map>
 #include <sstream>
 
 #include "app/plan.hpp"
@@ -8,26 +7,21 @@
 namespace keyrot::detail {
 surveyed_file survey_file(const options& o, const input_source& src, warnings& warn) {
     surveyed_file file{src.source(), {}, std::nullopt, {}, std::nullopt, false, 0};
-    std::map<std::string, std::size_t> index;
-    std::vector<key> last;  // each track's last key (tracks may interleave)
+    track_order order;
     const auto restart = [&] {
-        file.tracks.clear(), index.clear(), last.clear(), file.given.clear();
+        file.tracks.clear(), order.clear(), file.given.clear();
         file.counted = false, file.keys = 0;
     };
     const auto each = [&](const std::string& name, const key_settings& s, key&& k) {
-        const auto [it, added] = index.emplace(name, file.tracks.size());
+        const auto [at, added] = order.add(name, k, src.source());
         if (added) {
             file.tracks.emplace_back(name, s.key_fps, s.interpolation ? s.interpolation->time_rounding : 0);
             if (file.tracks.size() == 1) file.euler = s.euler;
-            last.push_back(k);
-        } else {
-            check_order(last[it->second], k, src.source());
         }
-        file.tracks[it->second].add(k);
+        file.tracks[at].add(k);
         file.given.insert(k.given_as);
         file.counted = file.counted || (k.frame && !k.has_time);
         ++file.keys;
-        if (!added) last[it->second] = std::move(k);
     };
     file.whole = for_each_key(src, src.detect(o.from), reading(o, src.source()), warn, restart, each);
     return file;

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <map>
 #include <ostream>
 #include <utility>
 #include <vector>
@@ -37,23 +36,15 @@ struct described_file {
 
 described_file describe_file(const options& o, const input_source& src, warnings& warn) {
     described_file file{src.source(), src.detect(o.from), {}};
-    std::map<std::string, std::size_t> index;
-    std::vector<double> last;  // each track's last time (tracks may interleave)
-    const auto restart = [&] { file.tracks.clear(), index.clear(), last.clear(); };
+    track_order order;
+    const auto restart = [&] { file.tracks.clear(), order.clear(); };
     const auto each = [&](const std::string& name, const key_settings& s, key&& k) {
-        const auto [it, added] = index.emplace(name, file.tracks.size());
-        if (added) {
-            file.tracks.push_back({track_describer(name, s.euler, o.segments), s.interpolation, s.key_fps, {}});
-            last.push_back(k.time);
-        } else {
-            key previous;
-            previous.time = last[it->second];
-            check_order(previous, k, src.source());
-            last[it->second] = k.time;
-        }
-        file.tracks[it->second].keys.add(k);
-        file.tracks[it->second].carried |= channels_of(k);
-        file.tracks[it->second].counted = file.tracks[it->second].counted || (k.frame && !k.has_time);
+        const auto [at, added] = order.add(name, k, src.source());
+        if (added) file.tracks.push_back({track_describer(name, s.euler, o.segments), s.interpolation, s.key_fps, {}});
+        described_track& t = file.tracks[at];
+        t.keys.add(k);
+        t.carried |= channels_of(k);
+        t.counted = t.counted || (k.frame && !k.has_time);
     };
     for_each_key(src, file.fmt, reading(o, src.source()), warn, restart, each);
     return file;

@@ -94,6 +94,21 @@ const key_settings& key_stream::settings() const { return reader_ ? reader_->set
 bool key_stream::named() const { return reader_ ? reader_->named() : whole_->named; }
 location key_stream::start() const { return reader_ ? reader_->start() : location{}; }
 
+std::pair<std::size_t, bool> track_order::add(const std::string& name, const key& k, const std::string& source) {
+    const auto [it, added] = index_.emplace(name, last_time_.size());
+    if (added) {
+        last_time_.push_back(k.time);
+    } else {
+        if (!(k.time > last_time_[it->second])) {
+            key previous;
+            previous.time = last_time_[it->second];
+            check_order(previous, k, source);
+        }
+        last_time_[it->second] = k.time;
+    }
+    return {it->second, added};
+}
+
 std::optional<document> for_each_key(const input_source& src, format f, const read_options& ro, warnings& warn,
                                      const std::function<void()>& restart,
                                      const std::function<void(const std::string&, const key_settings&, key&&)>& each) {

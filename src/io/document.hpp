@@ -5,9 +5,11 @@
 // info).
 #include <functional>
 #include <istream>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/io.hpp"
@@ -57,6 +59,22 @@ private:
     const document* whole_ = nullptr;
     std::size_t track_ = 0, key_ = 0;
     key_settings settings_;  // of whole_'s current track
+};
+
+/// Tracks by name in order of first appearance, for a reader of keys one at
+/// a time whose tracks may interleave: each key is checked to come after
+/// its track's last (check_order).
+class track_order {
+public:
+    /// The index of `k`'s track `name` (the next one, for a new name), and
+    /// whether it is new. Throws input_error when `k` is not after the
+    /// track's last key.
+    std::pair<std::size_t, bool> add(const std::string& name, const key& k, const std::string& source);
+    void clear() { index_.clear(), last_time_.clear(); }
+
+private:
+    std::map<std::string, std::size_t> index_;
+    std::vector<double> last_time_;
 };
 
 /// Every key of `src` handed to `each(track, settings, key)` in file order,
