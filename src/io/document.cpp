@@ -91,7 +91,6 @@ bool key_stream::next(std::string& name, key& k) {
 }
 
 const key_settings& key_stream::settings() const { return reader_ ? reader_->settings() : settings_; }
-bool key_stream::named() const { return reader_ ? reader_->named() : whole_->named; }
 location key_stream::start() const { return reader_ ? reader_->start() : location{}; }
 
 std::pair<std::size_t, bool> track_order::add(const std::string& name, const key& k, const std::string& source) {

@@ -46,7 +46,6 @@ public:
     bool next(std::string& track, key& k);
     /// The settings of the track of the key next() gave last.
     const key_settings& settings() const;
-    bool named() const;
     /// Where the keys start, for "no keys" errors.
     location start() const;
     bool declined() const { return reader_ && reader_->declined(); }
