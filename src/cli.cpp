@@ -247,7 +247,7 @@ void define_compare(CLI::App& sub, options& o, raw_flags& f) {
                    fmt::format("largest rotation difference, in degrees or with a unit: 0.1deg, 0.002rad (default {})",
                                o.tol_deg));
     sub.add_option("--tol-translation", o.tol_translation,
-                   fmt::format("largest translation difference (default {})", o.tol_translation));
+                   fmt::format("largest translation, scale or morph weight difference (default {})", o.tol_translation));
     sub.add_flag("--ignore-extra", f.ignore_extra,
                  "grade only the rows the key has: rows and tracks only an answer has are counted, not failed");
     sub.option_defaults()->group("Output");
@@ -282,7 +282,7 @@ void define_reduce(CLI::App& sub, options& o, raw_flags& f) {
                                "(default {})",
                                o.tol_deg));
     sub.add_option("--tol-translation", o.tol_translation,
-                   fmt::format("largest translation (and scale) error at any input key (default {})",
+                   fmt::format("largest translation, scale or morph weight error at any input key (default {})",
                                o.tol_translation));
     sub.add_option("--report", f.report,
                    "json: a JSON report per file on standard output, for keys written by -o or --output-dir")

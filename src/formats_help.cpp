@@ -35,21 +35,21 @@ std::string formats_help() {
         out += '\n';
     }
     out += fmt::format("Beside them: time or frame (at --key-fps, default 24); track (optional, names the track); {} (optional "
-                       "translation);\n{} (optional scale).\n",
+                       "translation);\n{} (optional scale); w0,w1,... (optional morph weights, as many on every key of a track).\n",
                        fmt::join(translation_columns, ","), fmt::join(scale_columns, ","));
     out += "\nJSON: a document {\"keys\": [KEY, ...]}, a bare array [KEY, ...], or {\"tracks\": {\"NAME\": {\"keys\": [...]}, "
            "...}}.\nOptional document (or track) fields: \"angles\": \"degrees\" | \"radians\", \"euler\": \"ZYX\", "
            "\"quat_order\":\n\"wxyz\" | \"xyzw\", \"fps\" (the rate of \"frame\"). A KEY holds \"time\" or \"frame\", "
-           "one rotation, and optionally\n\"translation\": [x, y, z] and \"scale\": [x, y, z]. The rotation's fields, by "
-           "representation:\n";
+           "one rotation, and optionally\n\"translation\": [x, y, z], \"scale\": [x, y, z] and \"weights\": [w0, w1, ...]. "
+           "The rotation's fields,\nby representation:\n";
     for (const auto& [r, fields] : json_fields) out += fmt::format("  {:<12}{}\n", to_string(r), fields);
     out += "\nNDJSON: one KEY object per line, with \"track\" when there are tracks; a first line without a rotation\n"
            "holds the settings, as keyrot writes it where needed (--settings-line).\n"
            "\nglTF 2.0 (.gltf with its buffers, or .glb): each node an animation moves is a track named after it\n"
            "(\"<animation>/<node>\" when there are several animations; --animation picks one), its rotation,\n"
-           "translation and scale channels interpolated as their samplers say (LINEAR, STEP, CUBICSPLINE). A glTF\n"
-           "output of a glTF input is that file with its samplers replaced; of any other input, a new file with a\n"
-           "node per track.\n"
+           "translation, scale and morph weights channels interpolated as their samplers say (LINEAR, STEP,\n"
+           "CUBICSPLINE). A glTF output of a glTF input is that file with its samplers replaced; of any other\n"
+           "input, a new file with a node per track (and no morph weights, which need the input's mesh).\n"
            "\nBVH (.bvh): each joint with channels is a track named after it, its rotation channels the intrinsic\n"
            "Euler sequence of their order (Zrotation Xrotation Yrotation: ZXY, in degrees), its position channels\n"
            "the translation; frame f at f / rate. A BVH output needs a BVH input, whose hierarchy it keeps; its\n"

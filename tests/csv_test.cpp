@@ -74,6 +74,23 @@ TEST_CASE("CSV: scale columns sx sy sz, optional per key, beside a 4x4 matrix to
           "in:2: columns sx sy sz: expected three numbers or three empty cells");
 }
 
+TEST_CASE("CSV: morph weights w0 .. wN-1, a track with fewer leaving the last cells empty") {
+    const auto doc = read("track,time,qw,qx,qy,qz,W1,w0,w2\nface,0,1,0,0,0,0.5,0.25,1\n"
+                          "face,1,1,0,0,0,1,0,0\neye,0,1,0,0,0,,2,\narm,0,1,0,0,0,,,\n",
+                          format::csv);
+    REQUIRE(doc.tracks.size() == 3);
+    CHECK(doc.tracks[0].keys[0].weights == morph_weights{0.25, 0.5, 1});  // (the fast path)
+    CHECK(doc.tracks[1].keys[0].weights == morph_weights{2});
+    CHECK(doc.tracks[2].keys[0].weights.empty());
+    CHECK(error_of("time,qw,qx,qy,qz,w1\n0,1,0,0,0,1\n", format::csv) ==
+          "in:1: column 'w1' without 'w0': expected the morph weights' columns w0 to wN-1, each once");
+    CHECK(error_of("time,qw,qx,qy,qz,w0,w1\n0,1,0,0,0,,1\n", format::csv) ==
+          "in:2: column 'w1' after an empty 'w0': expected the weights as numbers from w0 on, and the columns "
+          "after them empty");
+    CHECK(error_of("time,qw,qx,qy,qz,w0,w1\n0,1,0,0,0,1,1\n1,1,0,0,0,1,\n", format::csv) ==
+          "in:3: 1 morph weights after a key with 2: expected as many on every key of a track");
+}
+
 TEST_CASE("CSV: every representation's columns") {
     CHECK(read_keys("time,ax,ay,az,angle\n0,0,0,1,90\n", format::csv)[0].second.kind == rep::axis_angle);
     CHECK(read("time,e1,e2,e3\n0,1,2,3\n", format::csv).tracks[0].keys[0].given_as == rep::euler);

@@ -141,6 +141,38 @@ TEST_CASE("scale channel: its own keys, apart from the translation's, interpolat
     CHECK_FALSE(run(keys_at({{0, quat{}}, {1, quat{}}}))[3].scale);
 }
 
+TEST_CASE("morph weights: component-wise linear, held by step, Hermite for cubicspline, on the rotation's grid") {
+    // (a frame's weights are valid while it is handed over: kept here as copies)
+    const auto weights = [](const track& t, const resample_options& opts) {
+        std::vector<morph_weights> out;
+        resample(t, opts, "test", [&](const sample& s) { out.emplace_back(s.weights.begin(), s.weights.end()); });
+        return out;
+    };
+    track t = keys_at({{0, quat{}}, {1, quat{}}, {2, quat{}}});
+    t.keys[0].weights = {0, 1};
+    t.keys[1].weights = {1, 3};
+    t.keys[2].weights = {0.5, -1};
+    const auto out = weights(t, {4, method::slerp, path::shortest});
+    REQUIRE(out.size() == 9);
+    CHECK(out[1] == morph_weights{0.25, 1.5});  // t = 0.25
+    CHECK(out[4] == morph_weights{1, 3});       // at the key
+    CHECK(out[6] == morph_weights{0.75, 1});    // t = 1.5: halfway
+    resample_options stepped{4, method::slerp, path::shortest};
+    stepped.weights_how = method::step;
+    CHECK(weights(t, stepped)[7] == morph_weights{1, 3});  // t = 1.75, held from t = 1
+    // Hermite with the tangents below (per second, over a 1 s interval) at s = 1/2:
+    // (v0 + v1) / 2 + (b0 - a1) / 8 for the first weight: (0 + 1) / 2 + (2 - 6) / 8 = 0.
+    resample_options cubic{4, method::slerp, path::shortest};
+    cubic.weights_how = method::cubicspline;
+    full_spline_key first, second;
+    first.weights_out = {2, 0}, second.weights_in = {6, 0};
+    t.keys[0].spline = std::make_shared<const full_spline_key>(first);
+    t.keys[1].spline = std::make_shared<const full_spline_key>(second);
+    const auto curved = weights(t, cubic);
+    CHECK(curved[2] == morph_weights{0, 2});  // the second weight's tangents are zero: halfway
+    CHECK(weights(keys_at({{0, quat{}}, {1, quat{}}}), {})[2].empty());
+}
+
 TEST_CASE("streaming: frames come out as keys arrive, squad one key behind") {
     track t = keys_at({{0, quat{}}, {0.5, exp(vec3{0, 0, 0.2})}, {1, exp(vec3{0, 0.3, 0})}, {1.5, quat{}}});
     for (method m : {method::slerp, method::squad}) {

@@ -15,7 +15,9 @@ namespace keyrot {
 
 struct tolerances {
     double rotation_deg = 0.01;  ///< geodesic angle
-    double translation = 0.001;  ///< Euclidean distance, of translations and of scales
+    /// Euclidean distance, of translations and of scales; and the largest
+    /// difference of a morph weight.
+    double translation = 0.001;
 };
 
 /// One row of the report: a key of EXPECTED, of ACTUAL, or a matched pair.
@@ -26,6 +28,7 @@ struct row_difference {
     std::optional<double> angle_deg;    ///< sign-invariant geodesic angle; absent if unmatched
     std::optional<double> translation;  ///< distance, when EXPECTED has a translation and ACTUAL too
     std::optional<double> scale;        ///< the same for scales
+    std::optional<double> weights;      ///< the largest difference of a morph weight, when both have them
     std::string problem;                ///< why it failed ("only in ACTUAL", ...); empty if it passed
     bool extra = false;                 ///< a row of ACTUAL that EXPECTED has not
     bool pass() const { return problem.empty(); }
@@ -51,6 +54,8 @@ public:
     const std::string& name() const noexcept { return name_; }
     std::size_t keys() const noexcept { return keys_; }
     bool any_frame() const noexcept { return any_frame_; }
+    /// Whether some key carries morph weights.
+    bool any_weights() const noexcept { return any_weights_; }
     /// As counted_rate(track).
     double counted_rate() const;
     /// Whether counted_rate is implied by frames that carry their times.
@@ -66,7 +71,7 @@ private:
     std::optional<double> key_fps_;
     double stored_rounding_;
     std::size_t keys_ = 0;
-    bool float32_ = true, any_frame_ = false, frame_without_time_ = false;
+    bool float32_ = true, any_frame_ = false, frame_without_time_ = false, any_weights_ = false;
     std::optional<std::pair<double, double>> timed_;  ///< the last key's (frame, time) that gives the rate
     double last_frame_ = 0;
 };
@@ -85,6 +90,7 @@ struct comparison_summary {
     /// The first pair of tracks whose frames count at two rates (EXPECTED's,
     /// ACTUAL's), whose rows were therefore matched by time.
     std::optional<std::pair<double, double>> frame_rates;
+    bool weights = false;  ///< some track of EXPECTED carries morph weights
 };
 
 /// Matches the keys of two files as they are read, holding only the keys

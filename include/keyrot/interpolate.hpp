@@ -3,6 +3,7 @@
 // through a track's keys that resample evaluates segment by segment.
 #include <array>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -24,6 +25,10 @@ void check_method(method m, const std::optional<euler_seq>& seq);
 std::array<double, 4> hermite(const std::array<double, 4>& v0, const std::array<double, 4>& b0,
                               const std::array<double, 4>& v1, const std::array<double, 4>& a1, double seconds,
                               double s) noexcept;
+/// The same for any number of components (out.size() of them, and as many
+/// in each of the others).
+void hermite(std::span<const double> v0, std::span<const double> b0, std::span<const double> v1,
+             std::span<const double> a1, double seconds, double s, std::span<double> out) noexcept;
 
 /// Spherical linear interpolation from a to b, prepared once per pair of
 /// keys: Szeliski's Algorithm 2.1 with the relative rotation's axis and

@@ -14,11 +14,12 @@ namespace keyrot {
 struct reduce_options {
     method how = method::slerp;
     path way = path::shortest;
-    /// How translations and scales are interpolated, where not as `how`
-    /// says: step holds, any other method is linear (resample_options').
-    std::optional<method> translation_how = std::nullopt, scale_how = std::nullopt;
+    /// How translations, scales and morph weights are interpolated, where
+    /// not as `how` says: step holds, any other method is linear (resample_options').
+    std::optional<method> translation_how = std::nullopt, scale_how = std::nullopt, weights_how = std::nullopt;
     double tol_deg = 0.01;           ///< geodesic angle, sign-invariant
-    double tol_translation = 0.001;  ///< distance, for translations and scales
+    /// Distance, for translations and scales; and the largest difference of a morph weight.
+    double tol_translation = 0.001;
 };
 
 /// What reducing a track kept, and the largest errors it allowed.
@@ -44,7 +45,7 @@ public:
     /// method::cubicspline (its tangents belong to the keys it has).
     track_reducer(const reduce_options& opts, const std::optional<euler_seq>& seq, std::string source,
                   std::function<void(const key&)> keep);
-    /// Times strictly increasing (check_order). Throws input_error, naming
+    /// Times strictly increasing (check_next). Throws input_error, naming
     /// the key in `source`, for a CUBICSPLINE key.
     void add(const key& k);
     void finish();

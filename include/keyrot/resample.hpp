@@ -18,9 +18,10 @@ struct resample_options {
     /// At most this many frames per track (116 hours at 24 fps), so that a
     /// typo in a time fails at once instead of writing for hours.
     double max_frames = 1e7;
-    /// How translations and scales are interpolated, where not as `how`
-    /// says: step holds, cubicspline is Hermite, any other method is linear.
-    std::optional<method> translation_how = std::nullopt, scale_how = std::nullopt;
+    /// How translations, scales and morph weights are interpolated, where
+    /// not as `how` says: step holds, cubicspline is Hermite, any other
+    /// method is linear.
+    std::optional<method> translation_how = std::nullopt, scale_how = std::nullopt, weights_how = std::nullopt;
     /// The relative rounding of the key times as stored (2^-24 for glTF's
     /// 32-bit floats): a frame that close to a key is at it, beyond the
     /// grid's own tolerance of 1e-9 frame.
@@ -41,37 +42,50 @@ std::pair<double, double> frame_span(double first, double last, const resample_o
 void check_frame_range(const key& first, const key& last, const std::string& track_name,
                        const resample_options& opts, const std::string& source);
 
-/// One vector channel of a track (its translation or its scale) as its keys
-/// arrive: linear between the keys that carry one (held for step, Hermite
-/// for cubicspline), held before the first and after the last of them.
-class vector_channel {
+/// A value of a channel beside the rotation (a translation's or scale's,
+/// or morph weights) between keys `a` and `b` of times `ta` < `tb` at
+/// `time`, with the tangents `out_a` (a's) and `in_b` (b's) for
+/// cubicspline: step holds a, cubicspline is hermite(), any other method is
+/// linear, component-wise.
+vec3 channel_between(method how, double ta, const vec3& a, const vec3& out_a, double tb, const vec3& b, const vec3& in_b,
+                     double time);
+morph_weights channel_between(method how, double ta, const morph_weights& a, const morph_weights& out_a, double tb,
+                              const morph_weights& b, const morph_weights& in_b, double time);
+
+/// One channel of a track beside its rotation (its translation, scale or
+/// morph weights) as its keys arrive: as channel_between plays it between
+/// the keys that carry one, held before the first and after the last of them.
+template <class V>
+class value_channel {
 public:
     /// `how` as resample_options::translation_how; `expected`: some key of
     /// the track carries this channel (frames then wait for its key after them).
-    vector_channel(const resample_options& opts, method how, bool expected);
+    value_channel(const resample_options& opts, method how, bool expected);
     /// Times strictly increasing. `in`, `out`: cubicspline's tangents.
-    void add(double time, vec3 value, vec3 in, vec3 out);
+    void add(double time, V value, V in, V out);
     /// Sets `value` to the channel at a frame's `time` and returns true, or
     /// returns false while the key at or after `time` has not arrived (unless
     /// `end`: no more keys come). Frames ask in increasing time.
-    bool at(double time, bool end, std::optional<vec3>& value);
+    bool at(double time, bool end, std::optional<V>& value);
 
 private:
-    struct vector_key {
+    struct channel_key {
         double time;
-        vec3 value, in, out;
+        V value, in, out;
     };
-    vec3 between(const vector_key& a, const vector_key& b, double time) const;
 
     resample_options opts_;
     method how_;
     bool expected_;
-    std::deque<vector_key> keys_;  // the ones later frames may still need
+    std::deque<channel_key> keys_;  // the ones later frames may still need
 };
+
+extern template class value_channel<vec3>;
+extern template class value_channel<morph_weights>;
 
 /// Resamples one track whose keys arrive one at a time: frames come out, in
 /// order, as soon as the keys around them (and squad's look-ahead, and the
-/// next translation and scale key) are known. Frame k has time k / fps,
+/// next translation, scale and weights key) are known. Frame k has time k / fps,
 /// computed afresh, never accumulated. At a key time the rotation is that
 /// key's; quaternion signs are continuous from frame to frame, starting
 /// from the first key's sign. The caller checks the range with
@@ -81,7 +95,7 @@ public:
     /// `carried`: the channels some key of the track carries.
     track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, channels carried,
                     frame_sink emit);
-    /// Precondition: times strictly increasing (check_order, as track_builder checks).
+    /// Precondition: times strictly increasing (check_next, as track_builder checks).
     void add(const key& k);
     /// After the last key: the remaining frames.
     void finish();
@@ -95,14 +109,16 @@ private:
     resample_options opts_;
     segment_builder builder_;
     frame_sink emit_;
-    bool vectors_;  // a translation or scale channel: frames wait in pending_
+    bool vectors_;  // a translation, scale or weights channel: frames wait in pending_
     bool started_ = false;
     double next_frame_ = 0;
     double last_time_ = 0;
     quat last_key_, previous_;
     bool emitted_ = false;
-    vector_channel translation_, scale_;
-    std::deque<sample> pending_;  // frames waiting for a translation or scale key
+    value_channel<vec3> translation_, scale_;
+    value_channel<morph_weights> weights_;
+    std::deque<sample> pending_;  // frames waiting for a translation, scale or weights key
+    morph_weights weights_now_;   // what the frame handed over views
 };
 
 /// A whole track: check_frame_range, then every frame through emit. Keys at

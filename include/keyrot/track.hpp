@@ -4,10 +4,13 @@
 // rows made of them (sample).
 // make_key is the one place where raw values become rotations, so every
 // input format is validated the same way.
+#include <algorithm>
 #include <array>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "keyrot/convert.hpp"
@@ -27,6 +30,10 @@ struct location {
 /// "walk.csv:14", "walk.json: tracks.hip.keys[3]", or the source alone.
 std::string where(const std::string& source, const location& at);
 
+/// Morph target weights (glTF's `weights` channel), one per target of the
+/// node's mesh; empty where a key carries none.
+using morph_weights = std::vector<double>;
+
 /// A glTF CUBICSPLINE key as its spline passes it: the rotation as stored
 /// (not normalised), and the tangents, derivatives per second of the
 /// quaternion's components (w, x, y, z), of the translation and of the scale.
@@ -36,14 +43,21 @@ struct spline_key {
     vec3 scale_in, scale_out;
 };
 
+/// A CUBICSPLINE key whole: the spline_key, which a rotation's segments
+/// carry (and copy often), and the tangents of the morph weights.
+struct full_spline_key : spline_key {
+    morph_weights weights_in = {}, weights_out = {};
+};
+
 /// How a file says a track is interpolated (glTF's samplers): the
-/// rotation's method, and the translation's and scale's (step holds,
-/// cubicspline is Hermite, any other is linear); and how precisely it
-/// stores times.
+/// rotation's method, and the translation's, scale's and weights' (step
+/// holds, cubicspline is Hermite, any other is linear); and how precisely
+/// it stores times.
 struct track_interpolation {
     method rotation = method::slerp;
     method translation = method::slerp;
     method scale = method::slerp;
+    method weights = method::slerp;
     double time_rounding = 0;  ///< as resample_options::time_rounding
     bool operator==(const track_interpolation&) const = default;
 };
@@ -56,8 +70,9 @@ struct raw_key {
     rep kind = rep::quat;
     std::array<double, 16> values{};  ///< as many as `kind` needs
     std::optional<vec3> translation, scale;
+    morph_weights weights;
     std::string unknown;  ///< a JSON key's first field that keyrot does not read, if any
-    std::optional<spline_key> spline;  ///< glTF CUBICSPLINE keys only
+    std::optional<full_spline_key> spline;  ///< glTF CUBICSPLINE keys only
 
     /// Back to a default key in place, keeping the strings' storage: a reader
     /// that gives millions of keys fills one, where a fresh raw_key for each
@@ -69,6 +84,7 @@ struct raw_key {
         kind = rep::quat;
         values.fill(0);
         translation.reset(), scale.reset();
+        weights.clear();
         unknown.clear();
         spline.reset();
     }
@@ -104,6 +120,7 @@ struct key {
     bool has_time = true;         ///< the input gave a time (not only a frame)
     quat rotation;                ///< unit
     std::optional<vec3> translation, scale;
+    morph_weights weights;      ///< as many on every key of a track (check_next)
     rep given_as = rep::quat;
     /// The Euler angles as given (radians), for --method euler.
     std::optional<std::array<double, 3>> euler;
@@ -111,7 +128,7 @@ struct key {
     /// A quaternion key whose normalisation changed its bits: as given (reduce writes its keys back so).
     std::optional<quat> given_quat = std::nullopt;
     /// glTF CUBICSPLINE keys only (held apart: keys are copied often, and most have none).
-    std::shared_ptr<const spline_key> spline;
+    std::shared_ptr<const full_spline_key> spline;
 };
 
 struct track {
@@ -129,16 +146,18 @@ struct track {
 /// every row.
 struct channels {
     bool translation = false, scale = false;
+    std::size_t weights = 0;  ///< the most morph weights a key carries
     bool operator==(const channels&) const = default;
     channels& operator|=(const channels& o) {
         translation = translation || o.translation, scale = scale || o.scale;
+        weights = std::max(weights, o.weights);
         return *this;
     }
-    bool any() const { return translation || scale; }
+    bool any() const { return translation || scale || weights; }
 };
 
 /// The channels key `k` carries.
-inline channels channels_of(const key& k) { return {k.translation.has_value(), k.scale.has_value()}; }
+inline channels channels_of(const key& k) { return {k.translation.has_value(), k.scale.has_value(), k.weights.size()}; }
 
 /// One output row, what the sampler hands the writers: a resampled frame
 /// (frame = k) or a converted key.
@@ -151,7 +170,12 @@ struct sample {
     bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
     /// Euler output with --euler-continuous: the angles to write (radians).
     std::optional<std::array<double, 3>> euler = std::nullopt;
+    /// The morph weights, held by whoever hands the row over, valid during
+    /// that call: a sample stays trivially copyable, so the rows of the
+    /// everyday track (which has none) cost no more to pass around.
+    std::span<const double> weights = {};
 };
+static_assert(std::is_trivially_copyable_v<sample>);
 
 /// One key converted and validated on its own: rotation to a unit
 /// quaternion, frame to time. Throws input_error naming the key; warns once
@@ -164,12 +188,22 @@ key make_key(const raw_key& raw, const key_settings& settings, warnings& warn);
 /// one warning per source, or with strict settings an input_error at `where`.
 void unknown_field(std::string_view name, const std::string& where, const key_settings& settings, warnings& warn);
 
-/// Throws input_error unless `next` comes strictly after `previous`: keys at
-/// 0 s then 0 s give "walk.csv:3: time 0 s is not after the previous key's 0 s:
-/// expected strictly increasing times".
-void check_order(const key& previous, const key& next, const std::string& source);
+/// Throws input_error unless `next` may follow `previous` in a track:
+/// strictly after it, and with as many morph weights (none, or one per
+/// target, on every key). Keys at 0 s then 0 s give "walk.csv:3: time 0 s
+/// is not after the previous key's 0 s: expected strictly increasing times".
+void check_next(const key& previous, const key& next, const std::string& source);
 
-/// A track built one key at a time (make_key, check_order, at least one
+/// check_next's error (with previous and next as check_next's): out of line, as it is rare.
+[[noreturn, gnu::cold]] void not_next(const key& previous, const key& next, const std::string& source);
+
+// Inline: it is asked of every key.
+inline void check_next(const key& previous, const key& next, const std::string& source) {
+    if (!(next.time > previous.time) || next.weights.size() != previous.weights.size()) [[unlikely]]
+        not_next(previous, next, source);
+}
+
+/// A track built one key at a time (make_key, check_next, at least one
 /// key), as a reader hands keys over, so that their raw values need not all
 /// be held at once.
 ///
@@ -180,7 +214,7 @@ class track_builder {
 public:
     /// `at` and `settings` as raw_track's.
     track_builder(std::string name, location at, key_settings settings);
-    /// make_key, and check_order against the key before.
+    /// make_key, and check_next against the key before.
     void add(const raw_key& raw, warnings& warn);
     /// Throws input_error for a track without keys.
     track finish(warnings& warn) &&;

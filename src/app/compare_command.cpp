@@ -183,8 +183,11 @@ public:
         if (whole_tracks_.size() > max_reasons)
             print_error(err_, fmt::format("{}: {} more tracks missing from one file", answer_,
                                           whole_tracks_.size() - max_reasons));
+        weights_ = c.weights;
         if (o_.report == format::csv)
-            to_->write("track,frame,time,difference,translation_difference,scale_difference,extra,pass,reason\n");
+            to_->write(fmt::format("track,frame,time,difference,translation_difference,scale_difference,{}extra,pass,"
+                                   "reason\n",
+                                   weights_ ? "weights_difference," : ""));
         else if (o_.report == format::json)
             to_->write("{\"entries\": [");
     }
@@ -228,9 +231,10 @@ private:
     void csv_row(const row_difference& r) {
         std::string line;
         append_csv_cell(line, r.track);
-        line += fmt::format(",{},{},{},{},{},{},{},", number_text(r.frame), number_text(r.time),
-                            number_text(r.angle_deg), number_text(r.translation), number_text(r.scale), r.extra,
-                            r.pass());
+        line += fmt::format(",{},{},{},{},{},", number_text(r.frame), number_text(r.time), number_text(r.angle_deg),
+                            number_text(r.translation), number_text(r.scale));
+        if (weights_) line += number_text(r.weights) + ',';
+        line += fmt::format("{},{},", r.extra, r.pass());
         append_csv_cell(line, r.problem);
         to_->write(line + '\n');
     }
@@ -240,6 +244,7 @@ private:
                                         number_text(r.time), json_number(r.angle_deg));
         if (r.translation) entry += ", \"translation_difference\": " + number_text(r.translation);
         if (r.scale) entry += ", \"scale_difference\": " + number_text(r.scale);
+        if (r.weights) entry += ", \"weights_difference\": " + number_text(r.weights);
         if (r.extra) entry += ", \"extra\": true";
         entry += fmt::format(", \"pass\": {}", r.pass());
         if (!r.pass()) entry += ", \"reason\": " + json_quote(r.problem);
@@ -253,6 +258,7 @@ private:
     std::optional<text_output> to_;
     std::unordered_set<std::string> whole_tracks_;
     bool frame_rates_ = false;
+    bool weights_ = false;  // a weights_difference column
     std::size_t told_ = 0, entries_ = 0;
 };
 

@@ -52,7 +52,7 @@ described_file describe_file(const options& o, const input_source& src, warnings
 
 /// How a track's file says its channels are played: a glTF LINEAR sampler
 /// is "slerp" for a rotation (as --method names it) and "linear" for a
-/// translation or scale: {"rotation", "slerp"}, {"translation", "linear"}.
+/// translation, scale or weights: {"rotation", "slerp"}, {"translation", "linear"}.
 std::vector<std::pair<std::string_view, std::string_view>> interpolations(const described_track& t) {
     const track_interpolation& i = *t.interpolation;
     // A vector channel "played by slerp" moves in a straight line: linear.
@@ -60,6 +60,7 @@ std::vector<std::pair<std::string_view, std::string_view>> interpolations(const 
     std::vector<std::pair<std::string_view, std::string_view>> out{{"rotation", to_string(i.rotation)}};
     if (t.carried.translation) out.emplace_back("translation", vector(i.translation));
     if (t.carried.scale) out.emplace_back("scale", vector(i.scale));
+    if (t.carried.weights) out.emplace_back("weights", vector(i.weights));
     return out;
 }
 
@@ -97,6 +98,8 @@ std::string info_text(const described_file& file, std::optional<int> precision, 
         if (bvh)
             out += fmt::format("  channels: {} (Euler {})\n", fmt::join(bvh->joints[n].channels, " "),
                                bvh->joints[n].euler.name);
+        if (const std::size_t w = file.tracks[n].carried.weights)
+            out += fmt::format("  morph weights: {} (w0 to w{})\n", w, w - 1);
         if (file.tracks[n].interpolation) {
             std::vector<std::string> each;
             for (const auto& [channel, how] : interpolations(file.tracks[n])) each.push_back(fmt::format("{} {}", channel, how));
@@ -170,6 +173,7 @@ std::string info_json(const described_file& file, bool segments, const bvh_sourc
             for (const segment_info& s : t.segments) each.push_back(segment(s));
             more += fmt::format(", \"segments\": [{}]", fmt::join(each, ", "));
         }
+        if (const std::size_t w = file.tracks[n].carried.weights) more += fmt::format(", \"weights\": {}", w);
         // Only where the file states it (glTF).
         if (file.tracks[n].interpolation) {
             std::vector<std::string> each;

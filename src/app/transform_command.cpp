@@ -88,7 +88,15 @@ document_facts facts_of(const document& doc) {
     return d;
 }
 
-sample key_row(const key& k) { return sample{k.time, k.frame, k.rotation, k.translation, k.scale, k.has_time}; }
+/// The methods a file states for a track (`own`) into resample's or reduce's options `r`.
+template <class Options>
+void own_methods(const track_interpolation& own, Options& r) {
+    r.how = own.rotation, r.translation_how = own.translation, r.scale_how = own.scale, r.weights_how = own.weights;
+}
+
+sample key_row(const key& k) {
+    return sample{k.time, k.frame, k.rotation, k.translation, k.scale, k.has_time, std::nullopt, k.weights};  // (views k's)
+}
 
 /// What makes a track's rows from its keys, chosen once per input:
 /// resample's frame grid, or convert's keys as they are.
@@ -167,7 +175,7 @@ public:
         const resample_options r = of(own);
         const auto linear_or_step = [](method m) { return m == method::step ? method::step : method::slerp; };
         return {linear_or_step(r.how), linear_or_step(r.translation_how.value_or(r.how)),
-                linear_or_step(r.scale_how.value_or(r.how))};
+                linear_or_step(r.scale_how.value_or(r.how)), linear_or_step(r.weights_how.value_or(r.how))};
     }
     void begin_track(const std::string&, const std::optional<euler_seq>& euler,
                      const std::optional<track_interpolation>& own, channels carried, frame_sink row) override {
@@ -182,7 +190,7 @@ private:
         resample_options r = opts_;
         if (!own) return r;
         r.time_rounding = own->time_rounding;
-        if (!method_given_) r.how = own->rotation, r.translation_how = own->translation, r.scale_how = own->scale;
+        if (!method_given_) own_methods(*own, r);
         return r;
     }
 
@@ -252,7 +260,7 @@ public:
             const reduce_options r = of(t.interpolation);
             check_method(r.how, t.euler);
             if (r.how == method::cubicspline || r.translation_how == method::cubicspline ||
-                r.scale_how == method::cubicspline)
+                r.scale_how == method::cubicspline || r.weights_how == method::cubicspline)
                 throw input_error(warn.source(),
                                   fmt::format("track '{}' is CUBICSPLINE: expected LINEAR or STEP keys, which reduce "
                                               "keeps as they are (resample it first, or give --method)",
@@ -267,7 +275,8 @@ public:
     track_interpolation written(const std::optional<track_interpolation>& own) const override {
         const reduce_options r = of(own);
         const auto linear_or_step = [](method m) { return m == method::step ? method::step : method::slerp; };
-        return {r.how, linear_or_step(r.translation_how.value_or(r.how)), linear_or_step(r.scale_how.value_or(r.how))};
+        return {r.how, linear_or_step(r.translation_how.value_or(r.how)), linear_or_step(r.scale_how.value_or(r.how)),
+                linear_or_step(r.weights_how.value_or(r.how))};
     }
     void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
                      const std::optional<track_interpolation>& own, channels carried, frame_sink row) override {
@@ -302,7 +311,7 @@ private:
     /// How a track whose file states `own` is reduced.
     reduce_options of(const std::optional<track_interpolation>& own) const {
         reduce_options r = opts_;
-        if (own && !method_given_) r.how = own->rotation, r.translation_how = own->translation, r.scale_how = own->scale;
+        if (own && !method_given_) own_methods(*own, r);
         return r;
     }
     std::string json_report() const {
@@ -366,7 +375,7 @@ document_facts scan(const transform_plan& p, const input_source& src, warnings& 
     while (reader->next(name, raw)) {
         key k = make_key(raw, reader->settings(), warn);
         if (!d.tracks.empty() && d.tracks.back().name == name) {
-            check_order(d.tracks.back().last, k, src.source());
+            check_next(d.tracks.back().last, k, src.source());
         } else if (!seen.insert(name).second) {
             read_whole = true;
             return d;
@@ -417,7 +426,7 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
         const key_settings& settings = reader->settings();
         key k = make_key(raw, settings, warn);
         const bool same_track = !seen.tracks.empty() && seen.tracks.back().name == name;
-        if (!known && same_track) check_order(seen.tracks.back().last, k, src.source());
+        if (!known && same_track) check_next(seen.tracks.back().last, k, src.source());
         if (!known && !same_track && !names.insert(name).second) return std::nullopt;
         if (!known) p.rows->check_key(same_track ? seen.tracks.back().first : k, k, name, src.source());
         if (!same_track) {

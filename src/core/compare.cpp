@@ -37,6 +37,7 @@ track_survey::track_survey(const track& t)
 
 void track_survey::add(const key& k) {
     ++keys_;
+    any_weights_ = any_weights_ || !k.weights.empty();
     float32_ = float32_ && static_cast<double>(static_cast<float>(k.time)) == k.time;
     if (!k.frame) return;
     any_frame_ = true;
@@ -70,6 +71,7 @@ comparer::comparer(const std::vector<track_survey>& expected, const std::vector<
     for (const track_survey& e : expected) {
         pairing& p = pairs_[e.name()];
         p.in_expected = true;
+        summary_.weights = summary_.weights || e.any_weights();
         order_.push_back(e.name());
         const auto named = in_actual.find(e.name());
         if (named == in_actual.end()) {
@@ -159,8 +161,10 @@ void comparer::put(row_difference r) {
 }
 
 row_difference comparer::matched(const std::string& name, const key& e, const key& a) const {
-    row_difference r{name, e.frame, e.time, from_radians(geodesic_angle(e.rotation, a.rotation), angle_unit::degrees),
-                     std::nullopt, std::nullopt, "", false};
+    row_difference r{name,         e.frame,      e.time,
+                     from_radians(geodesic_angle(e.rotation, a.rotation), angle_unit::degrees),
+                     std::nullopt, std::nullopt, std::nullopt,
+                     "",           false};
     if (*r.angle_deg > tol_.rotation_deg)
         r.problem = fmt::format("rotation differs by {:.6g} deg (tolerance {:g})", *r.angle_deg, tol_.rotation_deg);
     const auto vector = [&](const std::optional<vec3>& e_value, const std::optional<vec3>& a_value,
@@ -176,13 +180,24 @@ row_difference comparer::matched(const std::string& name, const key& e, const ke
     };
     vector(e.translation, a.translation, r.translation, "translation");
     vector(e.scale, a.scale, r.scale, "scale");
+    if (!e.weights.empty() && r.problem.empty()) {
+        if (a.weights.size() != e.weights.size())
+            r.problem = fmt::format("{} morph weights in ACTUAL: expected {}", a.weights.size(), e.weights.size());
+        else {
+            double worst = 0;
+            for (std::size_t j = 0; j < e.weights.size(); ++j) worst = std::max(worst, std::fabs(e.weights[j] - a.weights[j]));
+            r.weights = worst;
+            if (worst > tol_.translation)
+                r.problem = fmt::format("weights differ by {:.6g} (tolerance {:g})", worst, tol_.translation);
+        }
+    }
     return r;
 }
 
 row_difference comparer::unmatched(const std::string& name, const key& k, int side) const {
     if (side == expected_side)
-        return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, "missing from ACTUAL", false};
-    return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt,
+        return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, std::nullopt, "missing from ACTUAL", false};
+    return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, std::nullopt,
             extra_ == extra_rows::fail ? "only in ACTUAL" : "", true};
 }
 

@@ -97,12 +97,17 @@ quat segment_curve::at(double h) const noexcept {
 std::array<double, 4> hermite(const std::array<double, 4>& v0, const std::array<double, 4>& b0,
                               const std::array<double, 4>& v1, const std::array<double, 4>& a1, double seconds,
                               double s) noexcept {
+    std::array<double, 4> p{};
+    hermite(v0, b0, v1, a1, seconds, s, p);
+    return p;
+}
+
+void hermite(std::span<const double> v0, std::span<const double> b0, std::span<const double> v1,
+             std::span<const double> a1, double seconds, double s, std::span<double> out) noexcept {
     const double s2 = s * s, s3 = s2 * s;
     const double c0 = 2 * s3 - 3 * s2 + 1, cb = seconds * (s3 - 2 * s2 + s), c1 = -2 * s3 + 3 * s2,
                  ca = seconds * (s3 - s2);
-    std::array<double, 4> p{};
-    for (std::size_t j = 0; j < 4; ++j) p[j] = c0 * v0[j] + cb * b0[j] + c1 * v1[j] + ca * a1[j];
-    return p;
+    for (std::size_t j = 0; j < out.size(); ++j) out[j] = c0 * v0[j] + cb * b0[j] + c1 * v1[j] + ca * a1[j];
 }
 
 void check_method(method m, const std::optional<euler_seq>& seq) {
@@ -123,7 +128,8 @@ quat segment_builder::add(const key& k) {
     window_.push_back({k.time, q, q, e, {}});  // s = q until both neighbours are known
     // A key without a spline passes its rotation, with no tangents.
     if (how_ == method::cubicspline)
-        window_.back().spline = k.spline ? *k.spline : spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}};
+        window_.back().spline =
+            k.spline ? static_cast<const spline_key&>(*k.spline) : spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}};
     const std::size_t n = window_.size();
     if (how_ == method::squad && n >= 3) window_[n - 2].s = squad_control(window_[n - 3].q, window_[n - 2].q, q);
     return q;

@@ -5,6 +5,7 @@
 
 #include "keyrot/convert.hpp"
 #include "keyrot/error.hpp"
+#include "keyrot/resample.hpp"
 
 namespace keyrot {
 namespace {
@@ -14,7 +15,17 @@ double distance(const std::optional<vec3>& a, const std::optional<vec3>& b) { re
 /// A vector channel between keys `a` and `b` at `h`, as resample plays it.
 std::optional<vec3> vector_at(const std::optional<vec3>& a, const std::optional<vec3>& b, double h, method how) {
     if (!a || !b) return std::nullopt;
-    return how == method::step ? *a : (1 - h) * *a + h * *b;
+    return channel_between(how, 0, *a, {}, 1, *b, {}, h);
+}
+
+/// The largest difference of a weight of `k` from the weights between keys
+/// `a` and `b` at `h`, as resample plays them, or from `a`'s with `b` = a.
+double weights_distance(const morph_weights& a, const morph_weights& b, double h, method how, const morph_weights& k) {
+    if (a.empty() || k.empty()) return 0;
+    const morph_weights w = channel_between(how, 0, a, {}, 1, b, {}, h);
+    double worst = 0;
+    for (std::size_t j = 0; j < w.size(); ++j) worst = std::max(worst, std::fabs(w[j] - k[j]));
+    return worst;
 }
 
 }  // namespace
@@ -48,6 +59,7 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
     const segment_curve curve = s.curve();
     const method translation_how = opts_.translation_how.value_or(opts_.how);
     const method scale_how = opts_.scale_how.value_or(opts_.how);
+    const method weights_how = opts_.weights_how.value_or(opts_.how);
     double bad_deg = -1, bad_translation = -1;
     for (std::size_t i = from + 1; i < to && (e.ok || whole); ++i) {
         const key& k = keys_[i];
@@ -55,8 +67,9 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
         const double h = (k.time - a.time) / (b.time - a.time);
         const double deg = from_radians(geodesic_angle(curve.at(h), k.rotation), angle_unit::degrees);
         const double translation =
-            std::max(distance(vector_at(a.translation, b.translation, h, translation_how), k.translation),
-                     distance(vector_at(a.scale, b.scale, h, scale_how), k.scale));
+            std::max({distance(vector_at(a.translation, b.translation, h, translation_how), k.translation),
+                      distance(vector_at(a.scale, b.scale, h, scale_how), k.scale),
+                      weights_distance(a.weights, b.weights, h, weights_how, k.weights)});
         e.deg = std::max(e.deg, deg), e.translation = std::max(e.translation, translation);
         if (deg <= opts_.tol_deg && translation <= opts_.tol_translation) continue;
         e.ok = false;
@@ -82,7 +95,8 @@ void track_reducer::add(const key& k) {
     from_first_deg_ =
         std::max(from_first_deg_, from_radians(geodesic_angle(first_.rotation, k.rotation), angle_unit::degrees));
     from_first_translation_ = std::max(
-        {from_first_translation_, distance(first_.translation, k.translation), distance(first_.scale, k.scale)});
+        {from_first_translation_, distance(first_.translation, k.translation), distance(first_.scale, k.scale),
+         weights_distance(first_.weights, first_.weights, 0, method::step, k.weights)});
     if (channels_of(k) != channels_of(first_)) from_first_translation_ = INFINITY;
     if (held_ && !(from_first_deg_ <= opts_.tol_deg && from_first_translation_ <= opts_.tol_translation)) {
         held_ = false;  // the track moves: the keys kept meanwhile go out

@@ -48,25 +48,44 @@ void check_frame_range(const key& first, const key& last, const std::string& tra
                                       last.time, last_frame - first_frame + 1, fps, opts.max_frames));
 }
 
-vector_channel::vector_channel(const resample_options& opts, method how, bool expected)
-    : opts_(opts), how_(how), expected_(expected) {}
-
-void vector_channel::add(double time, vec3 value, vec3 in, vec3 out) { keys_.push_back({time, value, in, out}); }
-
-vec3 vector_channel::between(const vector_key& a, const vector_key& b, double time) const {
-    const double h = (time - a.time) / (b.time - a.time);
-    switch (how_) {
-        case method::step: return a.value;
+vec3 channel_between(method how, double ta, const vec3& a, const vec3& out_a, double tb, const vec3& b, const vec3& in_b,
+                     double time) {
+    const double h = (time - ta) / (tb - ta);
+    switch (how) {
+        case method::step: return a;
         case method::cubicspline: {
             const auto c = [](vec3 v) { return std::array<double, 4>{v.x, v.y, v.z, 0}; };
-            const auto p = hermite(c(a.value), c(a.out), c(b.value), c(b.in), b.time - a.time, h);
+            const auto p = hermite(c(a), c(out_a), c(b), c(in_b), tb - ta, h);
             return {p[0], p[1], p[2]};
         }
-        default: return (1 - h) * a.value + h * b.value;
+        default: return (1 - h) * a + h * b;
     }
 }
 
-bool vector_channel::at(double time, bool end, std::optional<vec3>& value) {
+morph_weights channel_between(method how, double ta, const morph_weights& a, const morph_weights& out_a, double tb,
+                              const morph_weights& b, const morph_weights& in_b, double time) {
+    const double h = (time - ta) / (tb - ta);
+    morph_weights w(a.size());
+    switch (how) {
+        case method::step: return a;
+        case method::cubicspline: hermite(a, out_a, b, in_b, tb - ta, h, w); return w;
+        default:
+            for (std::size_t j = 0; j < w.size(); ++j) w[j] = (1 - h) * a[j] + h * b[j];
+            return w;
+    }
+}
+
+template <class V>
+value_channel<V>::value_channel(const resample_options& opts, method how, bool expected)
+    : opts_(opts), how_(how), expected_(expected) {}
+
+template <class V>
+void value_channel<V>::add(double time, V value, V in, V out) {
+    keys_.push_back({time, std::move(value), std::move(in), std::move(out)});
+}
+
+template <class V>
+bool value_channel<V>::at(double time, bool end, std::optional<V>& value) {
     if (!expected_) return true;
     auto& keys = keys_;
     const auto tol = [this](double key_time) { return tolerance(key_time, opts_); };
@@ -82,12 +101,16 @@ bool vector_channel::at(double time, bool end, std::optional<vec3>& value) {
             return false;
         value = keys[j].value;
     } else {
-        value = between(keys[j - 1], keys[j], time);
+        const channel_key &a = keys[j - 1], &b = keys[j];
+        value = channel_between(how_, a.time, a.value, a.out, b.time, b.value, b.in, time);
     }
     // keep the key before the next frame's segment
     while (keys.size() > 1 && j > 1) keys.pop_front(), --j;
     return true;
 }
+
+template class value_channel<vec3>;
+template class value_channel<morph_weights>;
 
 track_resampler::track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, channels carried,
                                  frame_sink emit)
@@ -96,17 +119,24 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
       emit_(std::move(emit)),
       vectors_(carried.any()),
       translation_(opts, opts.translation_how.value_or(opts.how), carried.translation),
-      scale_(opts, opts.scale_how.value_or(opts.how), carried.scale) {}
+      scale_(opts, opts.scale_how.value_or(opts.how), carried.scale),
+      weights_(opts, opts.weights_how.value_or(opts.how), carried.weights > 0) {}
 
 void track_resampler::add(const key& k) {
     if (!started_) {
         started_ = true;
         next_frame_ = frame_span(k.time, k.time, opts_).first;
     }
-    if (k.translation || k.scale) {
-        const spline_key spline = k.spline ? *k.spline : spline_key{};
+    if (k.translation || k.scale || !k.weights.empty()) {
+        static const full_spline_key none;
+        const full_spline_key& spline = k.spline ? *k.spline : none;
         if (k.translation) translation_.add(k.time, *k.translation, spline.translation_in, spline.translation_out);
         if (k.scale) scale_.add(k.time, *k.scale, spline.scale_in, spline.scale_out);
+        if (!k.weights.empty()) {
+            morph_weights in = spline.weights_in, out = spline.weights_out;  // (zero where none are given)
+            in.resize(k.weights.size()), out.resize(k.weights.size());
+            weights_.add(k.time, k.weights, std::move(in), std::move(out));
+        }
         resolve_vectors(false);
     }
     last_key_ = builder_.add(k);
@@ -163,7 +193,11 @@ void track_resampler::out(double frame, quat q) {
 void track_resampler::resolve_vectors(bool end) {
     while (!pending_.empty()) {
         sample& s = pending_.front();
-        if (!translation_.at(s.time, end, s.translation) || !scale_.at(s.time, end, s.scale)) return;
+        std::optional<morph_weights> w;
+        if (!translation_.at(s.time, end, s.translation) || !scale_.at(s.time, end, s.scale) ||
+            !weights_.at(s.time, end, w))
+            return;
+        if (w) s.weights = weights_now_ = std::move(*w);
         emit_(s);
         pending_.pop_front();
     }

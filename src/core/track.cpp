@@ -75,7 +75,8 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     out.given_as = k.kind;
     out.translation = k.translation;
     out.scale = k.scale;
-    if (k.spline) out.spline = std::make_shared<const spline_key>(*k.spline);
+    if (!k.weights.empty()) out.weights = k.weights;
+    if (k.spline) out.spline = std::make_shared<const full_spline_key>(*k.spline);
     // A row with both is a frame of keyrot's own output, at whatever rate it
     // was made: its time times it, its frame is kept as a label (compare
     // matches by it).
@@ -133,11 +134,14 @@ void unknown_field(std::string_view name, const std::string& where, const key_se
     warn.once("field", fmt::format("ignoring {} ({})", what, where));
 }
 
-void check_order(const key& previous, const key& next, const std::string& source) {
+void not_next(const key& previous, const key& next, const std::string& source) {
     if (!(next.time > previous.time))
         throw input_error(where(source, next.at), fmt::format("time {} s is not after the previous key's {} s: "
                                                               "expected strictly increasing times",
                                                               next.time, previous.time));
+    throw input_error(where(source, next.at),
+                      fmt::format("{} morph weights after a key with {}: expected as many on every key of a track",
+                                  next.weights.size(), previous.weights.size()));
 }
 
 track_builder::track_builder(std::string name, location at, key_settings settings)
@@ -147,7 +151,7 @@ track_builder::track_builder(std::string name, location at, key_settings setting
 
 void track_builder::add(const raw_key& raw, warnings& warn) {
     key k = make_key(raw, settings_, warn);
-    if (!track_.keys.empty()) check_order(track_.keys.back(), k, warn.source());
+    if (!track_.keys.empty()) check_next(track_.keys.back(), k, warn.source());
     track_.keys.push_back(std::move(k));
 }
 

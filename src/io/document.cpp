@@ -101,7 +101,7 @@ std::pair<std::size_t, bool> track_order::add(const std::string& name, const key
         if (!(k.time > last_time_[it->second])) {
             key previous;
             previous.time = last_time_[it->second];
-            check_order(previous, k, source);
+            check_next(previous, k, source);
         }
         last_time_[it->second] = k.time;
     }

@@ -62,7 +62,7 @@ private:
 
 /// Tracks by name in order of first appearance, for a reader of keys one at
 /// a time whose tracks may interleave: each key is checked to come after
-/// its track's last (check_order).
+/// its track's last (check_next).
 class track_order {
 public:
     /// The index of `k`'s track `name` (the next one, for a new name), and

@@ -1,7 +1,7 @@
 #pragma once
 // glTF 2.0 animations as tracks: one track per animated node (and
-// animation), its rotation, translation and scale channels merged on one list of
-// key times, interpolated as their samplers say.
+// animation), its rotation, translation, scale and morph weights channels
+// merged on one list of key times, interpolated as their samplers say.
 #include <istream>
 #include <memory>
 #include <string>
@@ -15,7 +15,8 @@ namespace keyrot {
 /// channels (indices into the animation's channels) it merges.
 struct gltf_track_origin {
     std::size_t animation = 0, node = 0;
-    std::optional<std::size_t> rotation, translation, scale;
+    std::optional<std::size_t> rotation, translation, scale, weights;
+    std::size_t targets = 0;  ///< with weights: the morph targets of the node's mesh
 };
 
 /// A glTF input, kept for a glTF output that rewrites it: the file, and
@@ -27,8 +28,8 @@ struct gltf_source {
 
 /// The keys of a glTF file (`f`: gltf or glb; relative buffer URIs from the
 /// directory of ro.source), track after track: every animation's, or the
-/// one ro.animation names. A track is a node's rotation, translation and
-/// scale channels in one animation, named after the node ("node<i>" when
+/// one ro.animation names. A track is a node's rotation, translation,
+/// scale and weights channels in one animation, named after the node ("node<i>" when
 /// unnamed), prefixed "<animation>/" when several animations are read.
 /// Where the channels are keyed at different times, each gets a key at the
 /// other's times too, its value on its own curve there (so the curve is the

@@ -160,19 +160,34 @@ const char* interpolation_name(method m) {
 }
 
 /// The channels of a node keyrot writes, by their glTF target path.
-enum class gltf_path { rotation, translation, scale };
+enum class gltf_path { rotation, translation, scale, weights };
 
 const char* path_name(gltf_path p) {
-    return p == gltf_path::rotation ? "rotation" : p == gltf_path::translation ? "translation" : "scale";
+    switch (p) {
+        case gltf_path::rotation: return "rotation";
+        case gltf_path::translation: return "translation";
+        case gltf_path::scale: return "scale";
+        case gltf_path::weights: break;
+    }
+    return "weights";
+}
+
+/// Track `t`'s values of channel `path` (not the rotation), and how they are interpolated.
+std::pair<const gltf_vectors*, method> vectors_of(const gltf_track& t, gltf_path path) {
+    switch (path) {
+        case gltf_path::translation: return {&t.translation, t.how.translation};
+        case gltf_path::scale: return {&t.scale, t.how.scale};
+        case gltf_path::weights: return {&t.weights, t.how.weights};
+        case gltf_path::rotation: break;
+    }
+    return {nullptr, t.how.rotation};
 }
 
 /// A sampler of track `t`'s channel `path` into `animation`; returns its index.
 std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_track& t, gltf_path path,
                         std::map<const std::vector<double>*, std::size_t>& inputs) {
-    const bool rotation = path == gltf_path::rotation;
-    const gltf_vectors* vectors = rotation ? nullptr : path == gltf_path::translation ? &t.translation : &t.scale;
+    const auto [vectors, how] = vectors_of(t, path);
     const std::vector<double>& times = vectors ? vectors->times : t.times;
-    const method how = rotation ? t.how.rotation : path == gltf_path::translation ? t.how.translation : t.how.scale;
     // Channels on the rotation's times share its input.
     const std::vector<double>* input_times = vectors && vectors->times == t.times ? &t.times : &times;
     const std::string where = t.name.empty() ? b.source : fmt::format("{}: track '{}'", b.source, t.name);
@@ -182,13 +197,16 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_trac
     const auto put = [&](std::initializer_list<double> v) {
         for (const double x : v) values.push_back(single(x, where, path_name(path)));
     };
-    const auto put_vector = [&](const vec3& v) { put({v.x, v.y, v.z}); };
+    const auto put_span = [&](const std::vector<double>& v, std::size_t row, std::size_t w) {
+        for (std::size_t j = 0; j < w; ++j) put({v[row * w + j]});
+    };
     const bool spline = how == method::cubicspline;
     for (std::size_t i = 0; i < times.size(); ++i) {
         if (vectors) {
-            if (spline) put_vector(vectors->tangents[i][0]);
-            put_vector(vectors->values[i]);
-            if (spline) put_vector(vectors->tangents[i][1]);
+            const std::size_t w = vectors->width;
+            if (spline) put_span(vectors->tangents, 2 * i, w);
+            put_span(vectors->values, i, w);
+            if (spline) put_span(vectors->tangents, 2 * i + 1, w);
         } else if (spline) {
             const spline_key& s = t.splines[i];
             for (const quat& q : {s.rotation_in, s.rotation, s.rotation_out}) put({q.x, q.y, q.z, q.w});
@@ -200,7 +218,8 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_trac
     gltf_json sampler = gltf_json::object();
     sampler["input"] = input->second;
     sampler["interpolation"] = interpolation_name(how);
-    sampler["output"] = b.accessor(values, rotation ? 4 : 3, false);
+    // (weights are SCALAR, a weight per morph target in each key's element)
+    sampler["output"] = b.accessor(values, !vectors ? 4 : path == gltf_path::weights ? 1 : 3, false);
     animation["samplers"].push_back(std::move(sampler));
     return animation["samplers"].size() - 1;
 }
@@ -242,8 +261,13 @@ gltf_json new_file(const std::vector<gltf_track>& tracks, std::vector<gltf_node>
         else json["scenes"][0]["nodes"].push_back(k);
         if (!n.track) continue;
         const gltf_track& track = tracks[*n.track];
+        if (!track.weights.values.empty())
+            throw input_error(b.source, fmt::format("track '{}' has morph weights, which a new glTF file cannot hold "
+                                                    "without the mesh they weigh: expected a glTF input, whose file "
+                                                    "is rewritten, or another output format",
+                                                    track.name));
         for (const gltf_path p : {gltf_path::rotation, gltf_path::translation, gltf_path::scale})
-            if (p == gltf_path::rotation || !(p == gltf_path::translation ? track.translation : track.scale).values.empty())
+            if (p == gltf_path::rotation || !vectors_of(track, p).first->values.empty())
                 animation["channels"].push_back(channel(add_sampler(b, animation, track, p, inputs), k, path_name(p)));
     }
     return animation;
@@ -267,6 +291,7 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
         if (o.rotation) replaced[{o.animation, *o.rotation}] = {i, gltf_path::rotation};
         if (o.translation) replaced[{o.animation, *o.translation}] = {i, gltf_path::translation};
         if (o.scale) replaced[{o.animation, *o.scale}] = {i, gltf_path::scale};
+        if (o.weights) replaced[{o.animation, *o.weights}] = {i, gltf_path::weights};
     }
     // The old samplers of replaced channels leave; kept ones are renumbered.
     std::vector<bool> dropped_accessor(top_array(file, "accessors").size(), false);
@@ -307,7 +332,7 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
     }
     if (kept_channels)
         warn.once("gltf-kept",
-                  fmt::format("{} channel{} keyrot does not interpolate (weights) kept as {} were",
+                  fmt::format("{} channel{} keyrot does not read kept as {} were",
                               kept_channels, kept_channels == 1 ? "" : "s", kept_channels == 1 ? "it" : "they"));
     // An accessor still referred to stays (another sampler, a mesh may share it).
     accessor_refs(json, [&](gltf_json& ref) {
@@ -423,9 +448,9 @@ public:
         : f_(f), target_(target), commit_(commit), out_(out), source_(std::move(source)), skeleton_(std::move(skeleton)),
           warn_(warn) {}
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
-        tracks_.push_back({name, written, {}, {}, {}, {}, {}});
+        tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
     }
-    void key_spline(const spline_key& s) override { spline_ = s; }
+    void key_spline(const full_spline_key& s) override { spline_ = s; }
     void row(const sample& s) override {
         gltf_track& t = tracks_.back();
         t.times.push_back(s.time);
@@ -434,11 +459,20 @@ public:
         const auto put = [&](gltf_vectors& v, const std::optional<vec3>& value, method how, vec3 in, vec3 out) {
             if (!value) return;
             v.times.push_back(s.time);
-            v.values.push_back(*value);
-            if (how == method::cubicspline) v.tangents.push_back({in, out});
+            v.values.insert(v.values.end(), {value->x, value->y, value->z});
+            if (how == method::cubicspline) v.tangents.insert(v.tangents.end(), {in.x, in.y, in.z, out.x, out.y, out.z});
         };
         put(t.translation, s.translation, t.how.translation, spline_.translation_in, spline_.translation_out);
         put(t.scale, s.scale, t.how.scale, spline_.scale_in, spline_.scale_out);
+        if (!s.weights.empty()) {
+            gltf_vectors& w = t.weights;
+            w.width = s.weights.size();
+            w.times.push_back(s.time);
+            w.values.insert(w.values.end(), s.weights.begin(), s.weights.end());
+            if (t.how.weights == method::cubicspline)
+                for (const morph_weights* tangent : {&spline_.weights_in, &spline_.weights_out})
+                    for (std::size_t j = 0; j < w.width; ++j) w.tangents.push_back(j < tangent->size() ? (*tangent)[j] : 0);
+        }
     }
     void finish() override { write_gltf(tracks_, source_.get(), skeleton_, f_, target_, commit_, out_, warn_); }
 
@@ -451,7 +485,7 @@ private:
     std::vector<gltf_node> skeleton_;
     warnings& warn_;
     std::vector<gltf_track> tracks_;
-    spline_key spline_;
+    full_spline_key spline_;
 };
 
 }  // namespace

@@ -99,6 +99,7 @@ struct columns {
     rep kind = rep::quat;
     std::vector<std::size_t> rotation;  // in (w, x, y, z) order for quaternions
     std::optional<std::array<std::size_t, 3>> translation, scale;
+    std::vector<std::size_t> weights;  // w0, w1, ...
 };
 
 std::string column_list(rep r) {
@@ -189,6 +190,17 @@ columns parse_header(const std::vector<std::string_view>& cells, char separator,
     if (cols.translation && cols.kind == rep::matrix4)
         throw input_error(where, "4x4 matrix and tx ty tz columns: expected one translation per key");
     cols.scale = vector_columns(scale_columns, "scale");
+    for (std::size_t n = 0; n < index.size(); ++n) {  // w0 ... wN-1, one after another
+        const auto at = claim(weight_column(n));
+        if (!at) break;
+        cols.weights.push_back(*at);
+    }
+    for (const auto& [name, at] : index)
+        if (!known[at] && name.size() > 1 && name[0] == 'w' &&
+            name.find_first_not_of("0123456789", 1) == std::string::npos)
+            throw input_error(where, fmt::format("column '{}' without '{}': expected the morph weights' columns w0 to "
+                                                 "wN-1, each once",
+                                                 name, weight_column(cols.weights.size())));
     cols.plain = separator == ',' && cols.count <= max_plain_cells &&
                  std::all_of(known.begin(), known.end(), [](bool k) { return k; });
     for (std::size_t i = 0; i < cells.size(); ++i)
@@ -251,6 +263,15 @@ public:
         };
         k.translation = vector(cols_.translation, translation_columns);
         k.scale = vector(cols_.scale, scale_columns);
+        // A track with fewer morph targets than the table's columns leaves the last of them empty.
+        for (std::size_t i = 0; i < cols_.weights.size(); ++i) {
+            if (empty_cell(cells, cols_.weights[i])) continue;
+            if (k.weights.size() != i)
+                throw input_error(where(), fmt::format("column '{}' after an empty '{}': expected the weights as "
+                                                       "numbers from w0 on, and the columns after them empty",
+                                                       weight_column(i), weight_column(k.weights.size())));
+            k.weights.push_back(number(cols_.weights[i], weight_column(i)));
+        }
         track.clear();
         if (cols_.track) {
             track = splitter_.text(*cols_.track);
@@ -295,6 +316,7 @@ private:
         for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = cell[cols_.rotation[i]];
         if (const auto& t = cols_.translation) k.translation = vec3{cell[(*t)[0]], cell[(*t)[1]], cell[(*t)[2]]};
         if (const auto& s = cols_.scale) k.scale = vec3{cell[(*s)[0]], cell[(*s)[1]], cell[(*s)[2]]};
+        for (const std::size_t w : cols_.weights) k.weights.push_back(cell[w]);
         track = name;
         return true;
     }
@@ -445,15 +467,17 @@ public:
         time_ = info.times != time_columns::as_given || !info.all_frames || info.any_time;
         translation_ = info.carried.translation && opts.representation != rep::matrix4;
         scale_ = info.carried.scale;
-        std::vector<std::string_view> header;
-        if (info.named) header.push_back("track");
-        if (frame_) header.push_back("frame");
-        if (time_) header.push_back(info.time_name);
-        for (auto c : rotation_columns(opts.representation, opts.order)) header.push_back(c);
+        weights_ = info.carried.weights;
+        std::vector<std::string> header;
+        if (info.named) header.emplace_back("track");
+        if (frame_) header.emplace_back("frame");
+        if (time_) header.emplace_back(info.time_name);
+        for (auto c : rotation_columns(opts.representation, opts.order)) header.emplace_back(c);
         if (translation_)
-            for (auto c : translation_columns) header.push_back(c);
+            for (auto c : translation_columns) header.emplace_back(c);
         if (scale_)
-            for (auto c : scale_columns) header.push_back(c);
+            for (auto c : scale_columns) header.emplace_back(c);
+        for (std::size_t i = 0; i < weights_; ++i) header.push_back(weight_column(i));
         // The settings line only where it is needed: other CSV readers take it for the header.
         const std::string settings = settings_members(info, opts, opts.states, format::csv);
         if (!settings.empty()) fmt::format_to(std::back_inserter(out_), "{}{{{}}}\n", settings_comment, settings);
@@ -462,7 +486,8 @@ public:
 
     csv_writer(const csv_writer& other, std::string& out)
         : out_(out), info_(other.info_), opts_(other.opts_), warn_(other.warn_), name_(other.name_),
-          frame_(other.frame_), time_(other.time_), translation_(other.translation_), scale_(other.scale_) {}
+          frame_(other.frame_), time_(other.time_), translation_(other.translation_), scale_(other.scale_),
+          weights_(other.weights_) {}
 
     std::unique_ptr<table_writer> row_writer(std::string& out) const override {
         return std::make_unique<csv_writer>(*this, out);
@@ -490,6 +515,10 @@ public:
         };
         if (translation_) vector(s.translation);
         if (scale_) vector(s.scale);
+        for (std::size_t i = 0; i < weights_; ++i) {
+            if (i < s.weights.size()) cell(s.weights[i], opts_.precision);
+            else text.put(',');
+        }
         text.put('\n');
         text.flush();
     }
@@ -503,6 +532,7 @@ private:
     warnings& warn_;
     std::string name_;
     bool frame_ = false, time_ = false, translation_ = false, scale_ = false;
+    std::size_t weights_ = 0;  // columns w0 ... wN-1
 };
 
 }  // namespace

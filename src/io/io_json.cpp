@@ -411,6 +411,7 @@ public:
             array(text, {s.translation->x, s.translation->y, s.translation->z});
         }
         if (s.scale) text.put(", \"scale\": "), array(text, {s.scale->x, s.scale->y, s.scale->z});
+        if (!s.weights.empty()) text.put(", \"weights\": "), array(text, s.weights.data(), s.weights.size());
         text.put(lines_ ? "}\n" : "}");
         text.flush();
     }

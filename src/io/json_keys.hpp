@@ -45,10 +45,11 @@ public:
         const auto quat = obj_.member("quat"), axis = obj_.member("axis"), rotvec = obj_.member("rotvec"),
                    euler = obj_.member("euler"), matrix = obj_.member("matrix"), angle = obj_.member("angle");
         const int rotations = !!quat + !!axis + !!rotvec + !!euler + !!matrix;
-        const auto translation = obj_.member("translation"), scale = obj_.member("scale");
+        const auto translation = obj_.member("translation"), scale = obj_.member("scale"),
+                   weights = obj_.member("weights");
         // Counting the members read finds one that is not, without a look at each.
-        const int read =
-            !!k.time + !!k.frame + rotations + !!angle + !!translation + !!scale + obj_.member("track").has_value();
+        const int read = !!k.time + !!k.frame + rotations + !!angle + !!translation + !!scale + !!weights +
+                         obj_.member("track").has_value();
         if (obj_.size() > static_cast<std::size_t>(read)) k.unknown = first_unknown_member();
         if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
         if (rotations > 1) fail("more than one rotation: expected exactly one of 'quat', 'axis', 'rotvec', 'euler', 'matrix'");
@@ -92,13 +93,21 @@ public:
         };
         k.translation = vector(translation, "translation");
         k.scale = vector(scale, "scale");
+        if (weights) {
+            if (!weights->is_array() || weights->size() == 0)
+                fail(fmt::format("'weights': expected an array of numbers, one per morph target, got {}",
+                                 weights->is_array() ? "an empty array" : weights->type_name()));
+            for (std::size_t i = 0; i < weights->size(); ++i)
+                k.weights.push_back(number((*weights)[i], [&] { return fmt::format("weights[{}]", i); }));
+        }
         return k;
     }
 
 private:
     std::string first_unknown_member() const {
-        constexpr std::array<std::string_view, 12> known = {"time",   "t",     "frame",  "quat",        "axis",  "angle",
-                                                            "rotvec", "euler", "matrix", "translation", "scale", "track"};
+        constexpr std::array<std::string_view, 13> known = {"time",  "t",      "frame",       "quat",  "axis",
+                                                            "angle", "rotvec", "euler",       "matrix", "translation",
+                                                            "scale", "track",  "weights"};
         std::string name;
         obj_.members([&](std::string_view member, Value) {
             if (name.empty() && std::find(known.begin(), known.end(), member) == known.end())

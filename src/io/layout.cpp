@@ -16,6 +16,8 @@ constexpr std::array<std::string_view, 9> matrix_cols = {"m00", "m01", "m02", "m
 
 }  // namespace
 
+std::string weight_column(std::size_t i) { return "w" + std::to_string(i); }
+
 std::span<const std::string_view> rotation_columns(rep r, quat_order order) noexcept {
     switch (r) {
         case rep::quat: return order == quat_order::wxyz ? quat_wxyz : quat_xyzw;

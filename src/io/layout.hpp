@@ -25,6 +25,8 @@ struct bvh_source;
 std::span<const std::string_view> rotation_columns(rep r, quat_order order) noexcept;
 inline constexpr std::array<std::string_view, 3> translation_columns = {"tx", "ty", "tz"};
 inline constexpr std::array<std::string_view, 3> scale_columns = {"sx", "sy", "sz"};
+/// The CSV column of morph weight `i`: "w0", "w1", ...
+std::string weight_column(std::size_t i);
 
 /// Reorder 4 values between file order and (w, x, y, z).
 std::array<double, 4> from_quat_order(std::array<double, 4> v, quat_order order) noexcept;

@@ -148,6 +148,8 @@ public:
             return;
         }
         batch_.rows.push_back(s);
+        // The weights the row views live as long as this call: the batch keeps them (format() views them there).
+        if (!s.weights.empty()) batch_.weights.insert(batch_.weights.end(), s.weights.begin(), s.weights.end());
         if (batch_.rows.size() == batch_rows) hand_over();
     }
     void finish() {
@@ -170,6 +172,7 @@ private:
         std::size_t number = 0;
         std::optional<track_begin> resumed;  // the track the rows before the first begin belong to
         std::vector<sample> rows;
+        std::vector<double> weights;  // the rows' morph weights, one after another
         std::vector<track_begin> begins;
     };
     struct worker {
@@ -254,12 +257,20 @@ private:
     void format(const batch& b, worker& w) {
         table_writer& writer = w.own ? *w.own : writer_;
         if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->carried);
-        std::size_t next_begin = 0;
+        std::size_t next_begin = 0, weights = 0;
+        const bool weighted = !b.weights.empty();
         for (std::size_t i = 0; i <= b.rows.size(); ++i) {
             for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
                 writer.begin_track(b.begins[next_begin].name, b.begins[next_begin].carried);
             if (i == b.rows.size()) break;
-            writer.row(b.rows[i]);
+            if (!weighted || b.rows[i].weights.empty()) {
+                writer.row(b.rows[i]);
+            } else {
+                sample s = b.rows[i];
+                s.weights = std::span(b.weights).subspan(weights, s.weights.size());
+                weights += s.weights.size();
+                writer.row(s);
+            }
             if (!w.own) out_.maybe_flush();
         }
     }
