@@ -16,6 +16,7 @@
 
 #include "ground/text.hpp"
 #include "io/line_reader.hpp"
+#include "io/spool.hpp"
 
 namespace keyrot {
 namespace {
@@ -401,14 +402,8 @@ private:
     template <class Io, class Buffer>
     bool transfer(Io io, Buffer* values, std::size_t count, std::size_t start) {
         auto* bytes = reinterpret_cast<std::conditional_t<std::is_const_v<Buffer>, const char*, char*>>(values);
-        std::size_t left = count * sizeof(double), offset = start * sizeof(double);
-        while (left > 0) {
-            const ssize_t n = io(::fileno(file_), bytes, left, static_cast<off_t>(offset));
-            if (n < 0 && errno == EINTR) continue;
-            if (n <= 0) return false;
-            bytes += n, left -= static_cast<std::size_t>(n), offset += static_cast<std::size_t>(n);
-        }
-        return true;
+        return transfer_whole(io, ::fileno(file_), bytes, count * sizeof(double),
+                              static_cast<off_t>(start * sizeof(double)));
     }
 
     std::size_t width_, block_;

@@ -2,16 +2,17 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <set>
 
+#include "io/gltf_buffer.hpp"
 #include "io/output.hpp"
 
 namespace keyrot {
 namespace {
+
+using namespace detail;
 
 /// Extensions whose references to accessors and bufferViews this writer
 /// renumbers, or which hold none, beyond harmless_extension's: a file that
@@ -83,64 +84,6 @@ void compact(gltf_json& j, const char* name, const std::vector<bool>& keep, Refs
         j[name] = std::move(array);
 }
 
-/// The binary buffer of the output, its bufferViews and accessors appended to.
-class buffer_builder {
-public:
-    /// `input`: the source of the rows, for messages.
-    buffer_builder(gltf_json& json, std::string input) : source(std::move(input)), json_(json) {}
-    std::string source;
-    std::string bytes;
-
-    /// A bufferView of `data`, starting at an offset with the given remainder mod 4.
-    std::size_t view(std::string_view data, std::size_t remainder = 0) {
-        while (bytes.size() % 4 != remainder) bytes += '\0';
-        gltf_json v = gltf_json::object();
-        v["buffer"] = 0;
-        v["byteOffset"] = bytes.size();
-        v["byteLength"] = data.size();
-        bytes += data;
-        return append("bufferViews", std::move(v));
-    }
-
-    /// A FLOAT accessor of `values` (`width` per element), with min and max when `bounds`.
-    std::size_t accessor(const std::vector<float>& values, std::size_t width, bool bounds) {
-        std::string data(values.size() * 4, '\0');
-        for (std::size_t i = 0; i < values.size(); ++i) {
-            std::uint32_t raw;
-            std::memcpy(&raw, &values[i], 4);
-            for (std::size_t b = 0; b < 4; ++b) data[4 * i + b] = static_cast<char>(raw >> (8 * b) & 0xff);
-        }
-        gltf_json a = gltf_json::object();
-        a["bufferView"] = view(data);
-        a["componentType"] = 5126;
-        a["count"] = values.size() / width;
-        a["type"] = width == 1 ? "SCALAR" : width == 3 ? "VEC3" : "VEC4";
-        if (bounds) {
-            std::vector<float> lo(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(width)), hi = lo;
-            for (std::size_t i = 0; i < values.size(); ++i)
-                lo[i % width] = std::min(lo[i % width], values[i]), hi[i % width] = std::max(hi[i % width], values[i]);
-            a["min"] = lo, a["max"] = hi;
-        }
-        return append("accessors", std::move(a));
-    }
-
-private:
-    std::size_t append(const char* name, gltf_json value) {
-        if (!json_.contains(name)) json_[name] = gltf_json::array();
-        json_[name].push_back(std::move(value));
-        return json_[name].size() - 1;
-    }
-    gltf_json& json_;
-};
-
-/// `v` as a 32-bit float; an input_error at `where` ("walk.csv: track 'hip'") where it is too large for one.
-float single(double v, const std::string& where, const char* what) {
-    const auto f = static_cast<float>(v);
-    if (!std::isfinite(f))
-        throw input_error(where, fmt::format("{} {} is beyond a 32-bit float: expected what glTF can store", what, v));
-    return f;
-}
-
 /// Times as 32-bit floats, still strictly increasing.
 std::vector<float> time_values(const std::vector<double>& times, const std::string& where) {
     std::vector<float> out;
@@ -153,10 +96,6 @@ std::vector<float> time_values(const std::vector<double>& times, const std::stri
                                                  times[out.size() - 2], t));
     }
     return out;
-}
-
-const char* interpolation_name(method m) {
-    return m == method::step ? "STEP" : m == method::cubicspline ? "CUBICSPLINE" : "LINEAR";
 }
 
 /// The channels of a node keyrot writes, by their glTF target path.
@@ -222,55 +161,6 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_trac
     sampler["output"] = b.accessor(values, !vectors ? 4 : path == gltf_path::weights ? 1 : 3, false);
     animation["samplers"].push_back(std::move(sampler));
     return animation["samplers"].size() - 1;
-}
-
-gltf_json channel(std::size_t sampler, std::size_t node, const char* path) {
-    gltf_json c = gltf_json::object();
-    c["sampler"] = sampler;
-    c["target"] = gltf_json::object();
-    c["target"]["node"] = node;
-    c["target"]["path"] = path;
-    return c;
-}
-
-/// A new file: the nodes of `skeleton`, or a node per track, and one animation.
-gltf_json new_file(const std::vector<gltf_track>& tracks, std::vector<gltf_node> skeleton, buffer_builder& b,
-                   gltf_json& json) {
-    if (skeleton.empty())
-        for (std::size_t i = 0; i < tracks.size(); ++i)
-            skeleton.push_back({tracks[i].name.empty() ? "track" : tracks[i].name, std::nullopt, {}, i});
-    if (std::count_if(skeleton.begin(), skeleton.end(), [](const gltf_node& n) { return n.track.has_value(); }) !=
-        static_cast<std::ptrdiff_t>(tracks.size()))
-        throw input_error(b.source, fmt::format("{} tracks for a skeleton of {} nodes: expected a track per animated "
-                                                "joint", tracks.size(), skeleton.size()));
-    json["asset"] = {{"version", "2.0"}, {"generator", "keyrot"}};
-    json["scene"] = 0;
-    json["scenes"] = gltf_json::array({{{"nodes", gltf_json::array()}}});
-    json["nodes"] = gltf_json::array();
-    gltf_json animation = {{"channels", gltf_json::array()}, {"samplers", gltf_json::array()}};
-    std::map<const std::vector<double>*, std::size_t> inputs;
-    for (std::size_t k = 0; k < skeleton.size(); ++k) {
-        const gltf_node& n = skeleton[k];
-        json_quote(n.name);  // throws for a name that is not UTF-8, which JSON cannot hold
-        gltf_json node = {{"name", n.name}};
-        const vec3& t = n.translation;
-        if (t.x != 0 || t.y != 0 || t.z != 0)
-            for (const double x : {t.x, t.y, t.z}) node["translation"].push_back(single(x, b.source, "offset"));
-        json["nodes"].push_back(std::move(node));
-        if (n.parent) json["nodes"][*n.parent]["children"].push_back(k);
-        else json["scenes"][0]["nodes"].push_back(k);
-        if (!n.track) continue;
-        const gltf_track& track = tracks[*n.track];
-        if (!track.weights.values.empty())
-            throw input_error(b.source, fmt::format("track '{}' has morph weights, which a new glTF file cannot hold "
-                                                    "without the mesh they weigh: expected a glTF input, whose file "
-                                                    "is rewritten, or another output format",
-                                                    track.name));
-        for (const gltf_path p : {gltf_path::rotation, gltf_path::translation, gltf_path::scale})
-            if (p == gltf_path::rotation || !vectors_of(track, p).first->values.empty())
-                animation["channels"].push_back(channel(add_sampler(b, animation, track, p, inputs), k, path_name(p)));
-    }
-    return animation;
 }
 
 /// The input file with the samplers of the channels keyrot read replaced.
@@ -403,50 +293,13 @@ void move_image_uris(gltf_json& json, const std::string& from_directory, const s
     });
 }
 
-std::string glb_bytes(std::string text, std::string bin) {
-    text.append((4 - text.size() % 4) % 4, ' ');
-    bin.append((4 - bin.size() % 4) % 4, '\0');
-    std::string out;
-    const auto u32 = [&](std::size_t v) {
-        for (int b = 0; b < 4; ++b) out += static_cast<char>(v >> (8 * b) & 0xff);
-    };
-    out += "glTF";
-    u32(2);
-    u32(12 + 8 + text.size() + (bin.empty() ? 0 : 8 + bin.size()));
-    u32(text.size());
-    u32(0x4E4F534A);
-    out += text;
-    if (!bin.empty()) {
-        u32(bin.size());
-        u32(0x004E4942);
-        out += bin;
-    }
-    return out;
-}
-
-std::string base64(std::string_view bytes) {
-    static constexpr char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string out;
-    out.reserve((bytes.size() + 2) / 3 * 4);
-    for (std::size_t i = 0; i < bytes.size(); i += 3) {
-        const auto byte = [&](std::size_t j) {
-            return j < bytes.size() ? std::uint32_t{static_cast<unsigned char>(bytes[j])} : 0u;
-        };
-        const std::uint32_t v = byte(i) << 16 | byte(i + 1) << 8 | byte(i + 2);
-        out += digits[v >> 18 & 63];
-        out += digits[v >> 12 & 63];
-        out += i + 1 < bytes.size() ? digits[v >> 6 & 63] : '=';
-        out += i + 2 < bytes.size() ? digits[v & 63] : '=';
-    }
-    return out;
-}
-
-class gltf_table final : public table_output {
+/// A glTF input's tracks gathered, and written at finish() as that file
+/// with the samplers of the channels keyrot read replaced.
+class rewritten_table final : public table_output {
 public:
-    gltf_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
-               std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton, warnings& warn)
-        : f_(f), target_(target), commit_(commit), out_(out), source_(std::move(source)), skeleton_(std::move(skeleton)),
-          warn_(warn) {}
+    rewritten_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
+                    std::shared_ptr<gltf_source> source, warnings& warn)
+        : f_(f), target_(target), commit_(commit), out_(out), source_(std::move(source)), warn_(warn) {}
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
         tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
     }
@@ -474,7 +327,22 @@ public:
                     for (std::size_t j = 0; j < w.width; ++j) w.tangents.push_back(j < tangent->size() ? (*tangent)[j] : 0);
         }
     }
-    void finish() override { write_gltf(tracks_, source_.get(), skeleton_, f_, target_, commit_, out_, warn_); }
+    void finish() override {
+        gltf_json json = source_->file.json;
+        buffer_builder b(json, warn_.source());
+        gltf_json buffer = gltf_json::object();
+        if (const auto& buffers = top_array(source_->file, "buffers"); !buffers.empty() && buffers[0].is_object())
+            buffer = buffers[0];
+        try {
+            rewrite(tracks_, *source_, b, json, warn_);
+        } catch (const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
+            throw input_error(source_->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
+        }
+        move_image_uris(json, source_->file.directory, target_);
+        buffer.erase("uri");
+        json["buffers"] = gltf_json::array({buffer});
+        put_file(json, b.bin, f_, target_, commit_, out_);
+    }
 
 private:
     format f_;
@@ -482,7 +350,6 @@ private:
     commit_mode commit_;
     std::ostream& out_;
     std::shared_ptr<gltf_source> source_;
-    std::vector<gltf_node> skeleton_;
     warnings& warn_;
     std::vector<gltf_track> tracks_;
     full_spline_key spline_;
@@ -493,52 +360,8 @@ private:
 std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
                                               commit_mode commit, std::shared_ptr<gltf_source> source,
                                               std::vector<gltf_node> skeleton, warnings& warn) {
-    return std::make_unique<gltf_table>(f, target, out, commit, std::move(source), std::move(skeleton), warn);
-}
-
-void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, const std::vector<gltf_node>& skeleton,
-                format f, const std::optional<std::string>& target, commit_mode commit, std::ostream& out,
-                warnings& warn) {
-    gltf_json json = source ? source->file.json : gltf_json::object();
-    buffer_builder b(json, warn.source());
-    gltf_json buffer = gltf_json::object();
-    if (source) {
-        if (const auto& buffers = top_array(source->file, "buffers"); !buffers.empty() && buffers[0].is_object())
-            buffer = buffers[0];
-        try {
-            rewrite(tracks, *source, b, json, warn);
-        } catch (
-            const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
-            throw input_error(source->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
-        }
-        move_image_uris(json, source->file.directory, target);
-    } else {
-        json["animations"] = gltf_json::array({new_file(tracks, skeleton, b, json)});
-    }
-    buffer.erase("uri");
-    buffer["byteLength"] = b.bytes.size();
-    json["buffers"] = gltf_json::array({buffer});
-    if (f == format::glb) {
-        const std::string bytes = glb_bytes(json.dump(), std::move(b.bytes));
-        if (target)
-            write_file_atomically(*target, bytes, commit);
-        else
-            write_to_stream(out, bytes);
-        return;
-    }
-    if (!target) {
-        json["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64(b.bytes);
-        write_to_stream(out, json.dump() + "\n");
-        return;
-    }
-    // The .bin beside the .gltf: both written, then put in place (the buffer first).
-    const std::filesystem::path bin = std::filesystem::path(*target).replace_extension(".bin");
-    json["buffers"][0]["uri"] = bin.filename().string();
-    output_file bin_file(bin.string(), commit), gltf_file_out(*target, commit);
-    bin_file.write(b.bytes);
-    gltf_file_out.write(json.dump() + "\n");
-    bin_file.commit();
-    gltf_file_out.commit();
+    if (source) return std::make_unique<rewritten_table>(f, target, out, commit, std::move(source), warn);
+    return make_new_gltf_file(f, target, out, commit, std::move(skeleton), warn);
 }
 
 }  // namespace keyrot

@@ -41,22 +41,22 @@ struct gltf_node {
     std::optional<std::size_t> track;
 };
 
-/// Writes `tracks` as a glTF file of format `f` (gltf or glb) to `target`
-/// (a .gltf's buffer to the .bin of the same name beside it, both replaced
-/// only once both are written) or to `out` (a .gltf with its buffer as a
-/// data: URI). With `source`, the glTF input the tracks were read from
-/// (tracks[i] is its track i), that file is written with the samplers of
-/// the channels keyrot read replaced and all else kept; otherwise a new
-/// file with the nodes of `skeleton` (none: a node per track) and one
-/// animation. The files are put in place as `commit` says. Throws keyrot::error.
-void write_gltf(const std::vector<gltf_track>& tracks, gltf_source* source, const std::vector<gltf_node>& skeleton,
-                format f, const std::optional<std::string>& target, commit_mode commit, std::ostream& out,
-                warnings& warn);
-
-/// The rows of the tracks gathered as gltf_tracks (32-bit floats are what
-/// glTF keeps of them), written by write_gltf at finish().
+/// A glTF output of format `f` (gltf or glb) to `target` (a .gltf's buffer
+/// to the .bin of the same name beside it, both put in place as `commit`
+/// says only once both are written) or to `out` (a .gltf with its buffer
+/// as a data: URI). With `source`, the glTF input the tracks were read from
+/// (track i is its track i), that file is written with the samplers of the
+/// channels keyrot read replaced and all else kept, at finish(); otherwise
+/// a new file with the nodes of `skeleton` (none: a node per track) and one
+/// animation, its data set aside in temporary files as the rows come.
+/// Rotations, translations and scales are stored as 32-bit floats. Throws
+/// keyrot::error.
 std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
                                               commit_mode commit, std::shared_ptr<gltf_source> source,
                                               std::vector<gltf_node> skeleton, warnings& warn);
+
+/// make_gltf_table's new file (gltf_new_file.cpp).
+std::unique_ptr<table_output> make_new_gltf_file(format f, const std::optional<std::string>& target, std::ostream& out,
+                                                 commit_mode commit, std::vector<gltf_node> skeleton, warnings& warn);
 
 }  // namespace keyrot
