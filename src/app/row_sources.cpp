@@ -1,0 +1,265 @@
+#include "app/row_sources.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <ostream>
+#include <utility>
+
+#include "io/output.hpp"
+
+namespace keyrot::detail {
+
+document_facts facts_of(const document& doc) {
+    document_facts d;
+    d.named = doc.named;
+    for (const track& t : doc.tracks) {
+        key_settings s;
+        s.euler = t.euler;
+        s.key_fps = t.key_fps;
+        s.interpolation = t.interpolation;
+        for (const key& k : t.keys) d.add(t.name, s, key(k));
+    }
+    return d;
+}
+
+namespace {
+
+/// The methods a file states for a track (`own`) into resample's or reduce's options `r`.
+template <class Options>
+void own_methods(const track_interpolation& own, Options& r) {
+    r.how = own.rotation, r.translation_how = own.translation, r.scale_how = own.scale, r.weights_how = own.weights;
+}
+
+sample key_row(const key& k) {
+    return sample{k.time, k.frame, k.rotation, k.translation, k.scale, k.has_time, std::nullopt, k.weights};  // (views k's)
+}
+
+/// A glTF sampler's method for channel values played by `m`: STEP where
+/// they are held, LINEAR (slerp for a rotation) for any other.
+method linear_or_step(method m) { return m == method::step ? method::step : method::slerp; }
+
+/// resample: every frame of the grid within a track's keys.
+class frame_rows final : public row_source {
+public:
+    /// `method_given`: --method overrides the interpolation a file states.
+    frame_rows(const resample_options& r, bool method_given) : opts_(r), method_given_(method_given) {}
+    std::unique_ptr<row_source> another() const override { return std::make_unique<frame_rows>(opts_, method_given_); }
+    std::size_t row_count(const key& first, const key& last, std::size_t) const override {
+        const auto [from, to] = frame_span(first.time, last.time, opts_);
+        return static_cast<std::size_t>(to - from + 1);
+    }
+    table_info table(const document_facts& d) const override {
+        table_info info;
+        info.named = d.named;
+        info.carried = d.carried();
+        info.fps = opts_.fps;
+        // The method, when one interpolates every track's rotation.
+        const method first = of(d.tracks.front().interpolation).how;
+        if (std::all_of(d.tracks.begin(), d.tracks.end(), [&](const auto& t) { return of(t.interpolation).how == first; }))
+            info.method = to_string(first);
+        return info;
+    }
+    /// The frame grid of every track is within bounds. Frame numbers
+    /// count at 24 fps unless stated, whatever --fps is: said where that
+    /// could surprise.
+    void check(const document_facts& d, warnings& warn) const override {
+        for (const auto& t : d.tracks) {
+            check_method(of(t.interpolation).how, t.euler);
+            check_frame_range(t.first, t.last, t.name, of(t.interpolation), warn.source());
+        }
+        const bool assumed = std::any_of(d.tracks.begin(), d.tracks.end(), [](const auto& t) { return !t.key_fps; });
+        if (d.counted && assumed && opts_.fps != default_key_fps)
+            warn.once("key rate", fmt::format("frame numbers count at {} fps (the default, whatever --fps is): "
+                                              "--key-fps RATE reads them at another",
+                                              default_key_fps));
+    }
+    /// Before the key's frames: never hours of output.
+    void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const override {
+        // Far from both bounds, as nearly every key is, the frames need not be
+        // worked out: a frame or two of margin covers the grid's tolerance.
+        // (The first key was checked as a key of its own.)
+        const double frames = (k.time - first.time) * opts_.fps;
+        if (std::fabs(k.time * opts_.fps) < 0x1p52 && frames + 2 < opts_.max_frames) return;
+        check_frame_range(first, k, name, opts_, source);
+    }
+    /// Frames are LINEAR (dense enough for any method), or STEP where they are held.
+    track_interpolation written(const std::optional<track_interpolation>& own) const override {
+        const resample_options r = of(own);
+        return {linear_or_step(r.how), linear_or_step(r.translation_how.value_or(r.how)),
+                linear_or_step(r.scale_how.value_or(r.how)), linear_or_step(r.weights_how.value_or(r.how))};
+    }
+    void begin_track(const std::string&, const std::optional<euler_seq>& euler,
+                     const std::optional<track_interpolation>& own, channels carried, frame_sink row) override {
+        resampler_.emplace(of(own), euler, carried, std::move(row));
+    }
+    void add(const key& k) override { resampler_->add(k); }
+    void end_track() override { resampler_->finish(); }
+
+private:
+    /// How a track whose file states `own` is resampled.
+    resample_options of(const std::optional<track_interpolation>& own) const {
+        resample_options r = opts_;
+        if (!own) return r;
+        r.time_rounding = own->time_rounding;
+        if (!method_given_) own_methods(*own, r);
+        return r;
+    }
+
+    resample_options opts_;
+    bool method_given_;
+    std::optional<track_resampler> resampler_;
+};
+
+/// convert: each key as it is, with its own frame or time.
+class key_rows : public row_source {
+public:
+    std::unique_ptr<row_source> another() const override { return std::make_unique<key_rows>(); }
+    std::size_t row_count(const key&, const key&, std::size_t keys) const override { return keys; }
+    table_info table(const document_facts& d) const override {
+        table_info info;
+        info.named = d.named;
+        info.carried = d.carried();
+        info.times = time_columns::as_given;
+        info.all_frames = d.all_frames;
+        info.any_time = d.any_time;
+        info.counted = d.counted;
+        info.rows_name = d.frames ? "frames" : "keys";
+        // The rate frames count at, where the input states it (an assumed one is not written as if stated).
+        if (d.any_frame) info.fps = d.tracks.front().key_fps;
+        return info;
+    }
+    /// Frame numbers at one rate, the one the output states.
+    void check(const document_facts& d, warnings& warn) const override {
+        if (!d.any_frame) return;
+        const auto rate = [](const auto& t) { return t.key_fps.value_or(default_key_fps); };
+        for (const auto& t : d.tracks)
+            if (rate(t) != rate(d.tracks.front()))
+                throw input_error(warn.source(), fmt::format("tracks '{}' and '{}' count frames at {} and {} fps: expected "
+                                                             "one rate in a file that convert writes (resample writes times)",
+                                                             d.tracks.front().name, t.name, rate(d.tracks.front()), rate(t)));
+    }
+    void check_key(const key&, const key&, const std::string&, const std::string&) const override {}
+    /// The keys as the file interpolates them (LINEAR for a file that does not say).
+    track_interpolation written(const std::optional<track_interpolation>& own) const override {
+        return own.value_or(track_interpolation{});  // (its time_rounding is not written)
+    }
+    void begin_track(const std::string&, const std::optional<euler_seq>&, const std::optional<track_interpolation>&,
+                     channels, frame_sink row) override {
+        row_ = std::move(row);
+    }
+    void add(const key& k) override { row_(key_row(k)); }
+    void end_track() override {}
+
+protected:
+    frame_sink row_;
+};
+
+/// reduce: the fewest of each track's keys that replay within tolerance
+/// (track_reducer), as convert writes keys.
+class reduced_rows final : public key_rows {
+public:
+    /// `method_given`: --method overrides the interpolation a file states.
+    /// `gltf`: the output is a glTF file, which plays rotations LINEAR (slerp) or STEP only.
+    reduced_rows(const reduce_options& r, bool method_given, bool report_json, std::string source, bool gltf)
+        : opts_(r), method_given_(method_given), report_json_(report_json), source_(std::move(source)), gltf_(gltf) {}
+    std::unique_ptr<row_source> another() const override {
+        return std::make_unique<reduced_rows>(opts_, method_given_, report_json_, source_, gltf_);
+    }
+    void check(const document_facts& d, warnings& warn) const override {
+        key_rows::check(d, warn);
+        for (const auto& t : d.tracks) {
+            const reduce_options r = of(t.interpolation);
+            check_method(r.how, t.euler);
+            if (r.how == method::cubicspline || r.translation_how == method::cubicspline ||
+                r.scale_how == method::cubicspline || r.weights_how == method::cubicspline)
+                throw input_error(warn.source(),
+                                  fmt::format("track '{}' is CUBICSPLINE: expected LINEAR or STEP keys, which reduce "
+                                              "keeps as they are (resample it first, or give --method)",
+                                              t.name));
+            if (gltf_ && r.how != method::slerp && r.how != method::step)
+                throw usage_error(fmt::format("--method {}: a glTF file plays its keys as slerp (LINEAR) or step "
+                                              "(STEP): expected one of them, or another output format",
+                                              to_string(r.how)));
+        }
+    }
+    /// glTF plays the kept keys LINEAR (slerp; translations linear) or STEP.
+    track_interpolation written(const std::optional<track_interpolation>& own) const override {
+        const reduce_options r = of(own);
+        return {r.how, linear_or_step(r.translation_how.value_or(r.how)), linear_or_step(r.scale_how.value_or(r.how)),
+                linear_or_step(r.weights_how.value_or(r.how))};
+    }
+    void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
+                     const std::optional<track_interpolation>& own, channels carried, frame_sink row) override {
+        key_rows::begin_track(name, euler, own, carried, std::move(row));
+        name_ = name;
+        // A kept key goes out as it came in: a quaternion as given, not normalised.
+        reducer_.emplace(of(own), euler, source_, [this](const key& k) {
+            sample kept = key_row(k);
+            kept.rotation = k.given_quat.value_or(k.rotation);
+            row_(kept);
+        });
+    }
+    void add(const key& k) override { reducer_->add(k); }
+    void end_track() override {
+        reducer_->finish();
+        summaries_.emplace_back(name_, reducer_->summary());
+    }
+    void restart() override { summaries_.clear(); }
+    /// A line per track on `err`; with --report json, a JSON report on `out` instead.
+    void report(std::ostream& out, std::ostream& err) const override {
+        if (report_json_) return write_to_stream(out, json_report());
+        std::string text;
+        for (const auto& [name, s] : summaries_)
+            text += fmt::format("keyrot: {}{}: {} keys -> {}, largest error {:.6g} deg{}\n", source_,
+                                name.empty() ? "" : fmt::format(" track '{}'", name), s.keys, s.kept, s.worst_deg,
+                                s.worst_translation > 0 ? fmt::format(", {:.6g} in translation", s.worst_translation)
+                                                        : "");
+        err << text << std::flush;
+    }
+
+private:
+    /// How a track whose file states `own` is reduced.
+    reduce_options of(const std::optional<track_interpolation>& own) const {
+        reduce_options r = opts_;
+        if (own && !method_given_) own_methods(*own, r);
+        return r;
+    }
+    std::string json_report() const {
+        std::size_t keys = 0, kept = 0;
+        std::string tracks;
+        for (const auto& [name, s] : summaries_) {
+            keys += s.keys, kept += s.kept;
+            if (!tracks.empty()) tracks += ", ";
+            tracks += fmt::format("{{\"track\": {}, \"keys\": {}, \"kept\": {}, \"largest_error\": {}, "
+                                  "\"largest_translation_error\": {}}}",
+                                  json_quote(name), s.keys, s.kept, s.worst_deg, s.worst_translation);
+        }
+        return fmt::format("{{\"file\": {}, \"tol\": {}, \"tol_translation\": {}, \"keys\": {}, \"kept\": {}, "
+                           "\"tracks\": [{}]}}\n",
+                           json_quote(source_), opts_.tol_deg, opts_.tol_translation, keys, kept, tracks);
+    }
+
+    reduce_options opts_;
+    bool method_given_, report_json_;
+    std::string source_;
+    bool gltf_;
+    std::string name_;
+    std::optional<track_reducer> reducer_;
+    std::vector<std::pair<std::string, reduce_summary>> summaries_;
+};
+
+}  // namespace
+
+std::unique_ptr<row_source> make_frame_rows(const resample_options& r, bool method_given) {
+    return std::make_unique<frame_rows>(r, method_given);
+}
+
+std::unique_ptr<row_source> make_key_rows() { return std::make_unique<key_rows>(); }
+
+std::unique_ptr<row_source> make_reduced_rows(const reduce_options& r, bool method_given, bool report_json,
+                                              std::string source, bool gltf) {
+    return std::make_unique<reduced_rows>(r, method_given, report_json, std::move(source), gltf);
+}
+
+}  // namespace keyrot::detail

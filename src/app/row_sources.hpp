@@ -1,0 +1,104 @@
+#pragma once
+// What makes a track's rows from its keys (row_source), one kind per
+// command: resample's frame grid, convert's keys, reduce's kept keys; and
+// the facts of a document they are chosen by, gathered key by key.
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/document.hpp"
+#include "io/io.hpp"
+#include "keyrot/reduce.hpp"
+#include "keyrot/resample.hpp"
+
+namespace keyrot::detail {
+
+/// What a writer must know of a document before its first row, and what
+/// each track needs before its first frame, gathered key by key.
+struct document_facts {
+    struct track_facts {
+        std::string name;
+        key first, last;
+        channels carried;
+        std::optional<euler_seq> euler;
+        std::optional<double> key_fps;  // as stated: none, default_key_fps assumed
+        std::size_t keys = 0;
+        std::optional<track_interpolation> interpolation;  // the file's own
+    };
+    std::vector<track_facts> tracks;
+    bool named = false;
+    bool all_frames = true;  // every key has a frame
+    bool any_time = false;   // some key has a time
+    bool frames = false;     // some key has both: keyrot's own frames
+    bool any_frame = false;  // some key has a frame
+    bool counted = false;    // some key is timed by its frame number alone
+
+    /// Key `k` of track `track`, whose settings are `s`.
+    void add(const std::string& track, const key_settings& s, key&& k) {
+        all_frames = all_frames && k.frame.has_value();
+        any_time = any_time || k.has_time;
+        frames = frames || (k.frame && k.has_time);
+        if (tracks.empty() || tracks.back().name != track)
+            tracks.push_back({track, k, k, {}, s.euler, s.key_fps, 0, s.interpolation});
+        any_frame = any_frame || k.frame.has_value();
+        counted = counted || (k.frame && !k.has_time);
+        ++tracks.back().keys;
+        tracks.back().carried |= channels_of(k);
+        tracks.back().last = std::move(k);
+    }
+
+    /// The channels some track carries.
+    channels carried() const {
+        channels c;
+        for (const track_facts& t : tracks) c |= t.carried;
+        return c;
+    }
+};
+
+/// The facts of a document read whole.
+document_facts facts_of(const document& doc);
+
+/// What makes a track's rows from its keys, chosen once per input:
+/// resample's frame grid, or convert's keys as they are.
+class row_source {
+public:
+    virtual ~row_source() = default;
+    /// A row source of the same kind, for a track whose keys come between this one's.
+    virtual std::unique_ptr<row_source> another() const = 0;
+    /// How many rows a track of `keys` keys from `first` to `last` makes, which states no interpolation of its own.
+    virtual std::size_t row_count(const key& first, const key& last, std::size_t keys) const = 0;
+    /// What the writer is told before the first row.
+    virtual table_info table(const document_facts& d) const = 0;
+    /// Checks the whole input before anything is written; warns of what it assumed.
+    virtual void check(const document_facts& d, warnings& warn) const = 0;
+    /// In one pass: checks key `k` of track `name`, whose first key is `first`, before its rows.
+    virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
+    /// How a glTF file is to interpolate the rows of a track whose file states `own`.
+    virtual track_interpolation written(const std::optional<track_interpolation>& own) const = 0;
+    /// Track `name` begins (`own`: the interpolation its file states): its rows go to `row`.
+    virtual void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
+                             const std::optional<track_interpolation>& own, channels carried, frame_sink row) = 0;
+    virtual void add(const key& k) = 0;
+    virtual void end_track() = 0;
+    /// The rows made so far do not count: the input is read again.
+    virtual void restart() {}
+    /// After the last track, what is to be said of them (reduce's summaries).
+    virtual void report(std::ostream&, std::ostream&) const {}
+};
+
+/// resample: every frame of the grid within a track's keys. `method_given`:
+/// --method overrides the interpolation a file states.
+std::unique_ptr<row_source> make_frame_rows(const resample_options& r, bool method_given);
+
+/// convert: each key as it is, with its own frame or time.
+std::unique_ptr<row_source> make_key_rows();
+
+/// reduce: the fewest of each track's keys that replay within tolerance,
+/// as convert writes keys. `report_json`: --report json; `gltf`: the output
+/// is a glTF file, which plays rotations LINEAR (slerp) or STEP only.
+std::unique_ptr<row_source> make_reduced_rows(const reduce_options& r, bool method_given, bool report_json,
+                                              std::string source, bool gltf);
+
+}  // namespace keyrot::detail
