@@ -120,7 +120,7 @@ struct key {
     bool has_time = true;         ///< the input gave a time (not only a frame)
     quat rotation;                ///< unit
     std::optional<vec3> translation, scale;
-    morph_weights weights;      ///< as many on every key of a track (check_next)
+    morph_weights weights;        ///< as many on every key of a track (check_next)
     rep given_as = rep::quat;
     /// The Euler angles as given (radians), for --method euler.
     std::optional<std::array<double, 3>> euler;
@@ -192,12 +192,12 @@ void unknown_field(std::string_view name, const std::string& where, const key_se
 /// strictly after it, and with as many morph weights (none, or one per
 /// target, on every key). Keys at 0 s then 0 s give "walk.csv:3: time 0 s
 /// is not after the previous key's 0 s: expected strictly increasing times".
-void check_next(const key& previous, const key& next, const std::string& source);
+/// (Inline: it is asked of every key.)
+inline void check_next(const key& previous, const key& next, const std::string& source);
 
-/// check_next's error (with previous and next as check_next's): out of line, as it is rare.
+/// check_next's error, out of line as it is rare.
 [[noreturn, gnu::cold]] void not_next(const key& previous, const key& next, const std::string& source);
 
-// Inline: it is asked of every key.
 inline void check_next(const key& previous, const key& next, const std::string& source) {
     if (!(next.time > previous.time) || next.weights.size() != previous.weights.size()) [[unlikely]]
         not_next(previous, next, source);

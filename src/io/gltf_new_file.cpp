@@ -48,7 +48,8 @@ public:
     void row(const sample& s) override {
         // (the track's name in a message only when there is one to give)
         const auto where = [&] {
-            return tracks_.back().name.empty() ? b_.source : fmt::format("{}: track '{}'", b_.source, tracks_.back().name);
+            const std::string& name = tracks_.back().name;
+            return name.empty() ? b_.source : fmt::format("{}: track '{}'", b_.source, name);
         };
         const float time = single_at(s.time, where, "time");
         if (rotation_.count && !(time > rotation_.last))
@@ -57,7 +58,8 @@ public:
                                                    previous_time_, s.time));
         previous_time_ = s.time;
         rotation_.add(time, {s.rotation.x, s.rotation.y, s.rotation.z, s.rotation.w}, where, "rotation");
-        if (s.translation) translation_.add(time, {s.translation->x, s.translation->y, s.translation->z}, where, "translation");
+        if (s.translation)
+            translation_.add(time, {s.translation->x, s.translation->y, s.translation->z}, where, "translation");
         if (s.scale) scale_.add(time, {s.scale->x, s.scale->y, s.scale->z}, where, "scale");
     }
     void finish() override {
@@ -87,8 +89,9 @@ public:
             json["nodes"].push_back(std::move(node));
             if (n.parent) json["nodes"][*n.parent]["children"].push_back(k);
             else json["scenes"][0]["nodes"].push_back(k);
-            if (n.track)
-                for (const auto& [path, sampler] : tracks_[*n.track].samplers) channels.push_back(channel_json(sampler, k, path));
+            if (!n.track) continue;
+            for (const auto& [path, sampler] : tracks_[*n.track].samplers)
+                channels.push_back(channel_json(sampler, k, path));
         }
         for (const char* name : {"bufferViews", "accessors"})
             if (json_.contains(name)) json[name] = std::move(json_[name]);
@@ -127,12 +130,14 @@ private:
         if (tracks_.empty() || !tracks_.back().samplers.empty() || rotation_.count == 0) return;
         written_track& t = tracks_.back();
         std::optional<std::size_t> rotation_times;
-        for (const auto& [c, path, width, how] :
-             {std::tuple(&rotation_, "rotation", 4, t.how.rotation), std::tuple(&translation_, "translation", 3, t.how.translation),
-              std::tuple(&scale_, "scale", 3, t.how.scale)}) {
+        for (const auto& [c, path, width, how] : {std::tuple(&rotation_, "rotation", 4, t.how.rotation),
+                                                  std::tuple(&translation_, "translation", 3, t.how.translation),
+                                                  std::tuple(&scale_, "scale", 3, t.how.scale)}) {
             if (c->count == 0) continue;
             const auto times = [&, c = c] { return b_.accessor(b_.view(c->times), c->count, 1, {c->first}, {c->last}); };
-            const std::size_t input = c->count == rotation_.count ? (rotation_times ? *rotation_times : *(rotation_times = times())) : times();
+            std::size_t input;
+            if (c->count != rotation_.count) input = times();
+            else input = rotation_times ? *rotation_times : *(rotation_times = times());
             gltf_json sampler = gltf_json::object();
             sampler["input"] = input;
             sampler["interpolation"] = interpolation_name(how);
