@@ -11,8 +11,8 @@
 #include <span>
 
 #include "formats_help.hpp"
-#include "suggest.hpp"
 #include "ground/text.hpp"
+#include "suggest.hpp"
 
 namespace keyrot {
 

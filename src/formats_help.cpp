@@ -5,13 +5,13 @@
 #include <array>
 #include <string_view>
 
-#include "io/layout.hpp"
+#include "io/common/layout.hpp"
 
 namespace keyrot {
 namespace {
 
 /// Each representation's fields in a JSON key object (the CSV columns come
-/// from io/layout, the names the readers and writers use).
+/// from io/common/layout, the names the readers and writers use).
 constexpr std::array<std::pair<rep, std::string_view>, 6> json_fields = {{
     {rep::axis_angle, R"("axis": [x, y, z], "angle": a)"},
     {rep::quat, R"("quat": [w, x, y, z] in the quat_order, or {"w": w, "x": x, "y": y, "z": z})"},

@@ -9,9 +9,9 @@
 #include <new>
 #include <sstream>
 
-#include "cli.hpp"
-#include "io/output.hpp"
 #include "app/app.hpp"
+#include "cli.hpp"
+#include "io/common/output.hpp"
 #include "keyrot/error.hpp"
 
 namespace {

@@ -8,8 +8,8 @@
 #include <map>
 #include <sstream>
 
-#include "io/bvh.hpp"
-#include "io/bvh_write.hpp"
+#include "io/bvh/bvh_read.hpp"
+#include "io/bvh/bvh_write.hpp"
 #include "reading.hpp"
 
 namespace keyrot::test {

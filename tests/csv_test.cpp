@@ -1,5 +1,5 @@
 // Reading CSV: columns, comments, quoting, the fast path for plain rows.
-#include "io/io_csv.hpp"
+#include "io/csv/csv.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "io/fast/flat_json.hpp"
+#include "io/json/flat_json.hpp"
 #include "json_same.hpp"
 
 using keyrot::flat_json;

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "io/fast/flat_json.hpp"
+#include "io/json/flat_json.hpp"
 
 namespace keyrot::test {
 

@@ -1,5 +1,5 @@
 // Reading JSON documents and NDJSON lines, whole and streamed.
-#include "io/io_json.hpp"
+#include "io/json/json.hpp"
 #include "io/open.hpp"
 
 #include <doctest/doctest.h>
@@ -10,8 +10,8 @@
 #include <sstream>
 
 #include "helpers.hpp"
-#include "io/fast/flat_json.hpp"
-#include "io/fast/json_stream.hpp"
+#include "io/json/flat_json.hpp"
+#include "io/json/json_stream.hpp"
 #include "reading.hpp"
 
 using namespace keyrot;

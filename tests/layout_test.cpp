@@ -1,4 +1,4 @@
-#include "io/layout.hpp"
+#include "io/common/layout.hpp"
 
 #include <doctest/doctest.h>
 #include <cmath>

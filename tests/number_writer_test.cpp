@@ -1,6 +1,6 @@
 // Numbers as keyrot writes them: shortest round trip, or rounded as
 // --precision asks, digit for digit as fmt and printf.
-#include "io/fast/number_writer.hpp"
+#include "io/common/number_writer.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>
@@ -46,7 +46,7 @@ TEST_CASE("the shortest form is laid out exactly as fmt's \"{}\"") {
     // keyrot writes the shortest digits itself; fmt's general formatter is
     // the independent reference for the layout (fixed within 1e-4..1e16,
     // exponents with a sign and at least two digits). The digits come from
-    // an internal of fmt 9 (src/layout.cpp pins the version).
+    // an internal of fmt 9 (src/io/common/number_writer.cpp pins the version).
     const auto same_as_fmt = [](double v) {
         CAPTURE(v);
         REQUIRE(number(v) == fmt::format("{}", v));

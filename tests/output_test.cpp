@@ -1,5 +1,5 @@
 // Atomic output: a file is replaced whole on commit, or not at all.
-#include "io/output.hpp"
+#include "io/common/output.hpp"
 
 #include <doctest/doctest.h>
 #include <sys/stat.h>

@@ -13,7 +13,7 @@
 #include "reading.hpp"
 #include <thread>
 
-#include "io/io_json.hpp"
+#include "io/json/json.hpp"
 
 using namespace keyrot;
 using keyrot::test::read_all;

@@ -8,11 +8,11 @@
 #include <utility>
 #include <vector>
 
+#include "io/common/interface.hpp"
+#include "io/common/table_writer.hpp"
 #include "io/document.hpp"
-#include "io/io.hpp"
-#include "io/io_json.hpp"
+#include "io/json/json.hpp"
 #include "io/open.hpp"
-#include "io/table_writer.hpp"
 
 namespace keyrot::test {
 

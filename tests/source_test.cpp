@@ -1,6 +1,6 @@
 // Inputs: files read in place, standard input kept so that it can be read
 // twice, the format by flag, extension or content.
-#include "io/source.hpp"
+#include "io/common/source.hpp"
 
 #include <doctest/doctest.h>
 

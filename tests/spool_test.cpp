@@ -1,5 +1,5 @@
 // byte_spool: bytes set aside in a temporary file come back whole and in order.
-#include "io/spool.hpp"
+#include "io/common/spool.hpp"
 
 #include <doctest/doctest.h>
 

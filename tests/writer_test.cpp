@@ -1,5 +1,5 @@
 // Writing CSV, JSON and NDJSON tables, and reading them back.
-#include "io/io.hpp"
+#include "io/common/interface.hpp"
 
 #include <doctest/doctest.h>
 #include <fmt/format.h>

@@ -51,7 +51,7 @@ private:
 
 /// slerp_segment(a, b).at(h). slerp(1, 90deg@z, 0.5) = 45deg@z.
 quat slerp(quat a, quat b, double h) noexcept;
-/// Lerp of the components, normalised (seed 000, "method 1"). If the lerp
+/// Lerp of the components, normalised ("nlerp"). If the lerp
 /// is zero (b = -a, h = 1/2) the rotation is a's. nlerp(1, 90deg@z, 0.5) =
 /// 45deg@z, as slerp at the midpoint; elsewhere it runs ahead or behind.
 quat nlerp(quat a, quat b, double h) noexcept;

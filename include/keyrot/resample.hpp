@@ -123,7 +123,7 @@ private:
 
 /// A whole track: check_frame_range, then every frame through emit. Keys at
 /// 0 s (identity) and 1 s (90 degrees about z) at 4 fps, slerp: frames 0..4,
-/// at 0, 22.5, 45, 67.5 and 90 degrees (seed 000's worked example).
+/// at 0, 22.5, 45, 67.5 and 90 degrees (the classic worked example of slerp's constant speed).
 void resample(const track& t, const resample_options& opts, const std::string& source, const frame_sink& emit);
 
 }  // namespace keyrot

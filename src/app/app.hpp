@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "io/common/format.hpp"
+#include "io/common/layout.hpp"
 #include "keyrot/compare.hpp"
 #include "keyrot/convert.hpp"
-#include "io/format.hpp"
-#include "io/layout.hpp"
 #include "keyrot/interpolate.hpp"
 #include "keyrot/resample.hpp"
 

@@ -17,8 +17,10 @@
 #include "app/compare_files.hpp"
 #include "app/plan.hpp"
 #include "ground/thread_start.hpp"
-#include "io/io.hpp"
-#include "io/layout.hpp"
+#include "io/common/interface.hpp"
+#include "io/common/layout.hpp"
+#include "io/csv/csv.hpp"
+#include "io/json/json.hpp"
 
 namespace keyrot::detail {
 

@@ -9,9 +9,10 @@
 
 #include "app/commands.hpp"
 #include "app/plan.hpp"
-#include "io/bvh.hpp"
+#include "io/bvh/bvh_read.hpp"
+#include "io/common/layout.hpp"
 #include "io/document.hpp"
-#include "io/layout.hpp"
+#include "io/json/json.hpp"
 #include "keyrot/describe.hpp"
 
 namespace keyrot::detail {

@@ -1,6 +1,6 @@
 #include "app/plan.hpp"
 
-#include "io/output.hpp"
+#include "io/common/output.hpp"
 
 namespace keyrot::detail {
 

@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
-#include "io/document.hpp"
-#include "io/io.hpp"
-#include "io/output.hpp"
-#include "io/source.hpp"
 #include "app/app.hpp"
+#include "io/common/interface.hpp"
+#include "io/common/output.hpp"
+#include "io/common/source.hpp"
+#include "io/document.hpp"
 #include "keyrot/reduce.hpp"
 
 namespace keyrot::detail {

@@ -6,7 +6,8 @@
 #include <ostream>
 #include <utility>
 
-#include "io/output.hpp"
+#include "io/common/output.hpp"
+#include "io/json/json.hpp"
 
 namespace keyrot::detail {
 

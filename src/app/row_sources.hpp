@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "io/common/interface.hpp"
 #include "io/document.hpp"
-#include "io/io.hpp"
 #include "keyrot/reduce.hpp"
 #include "keyrot/resample.hpp"
 

@@ -8,7 +8,7 @@
 #include "app/commands.hpp"
 #include "app/plan.hpp"
 #include "ground/text.hpp"
-#include "io/layout.hpp"
+#include "io/common/layout.hpp"
 #include "io/open.hpp"
 
 namespace keyrot::detail {

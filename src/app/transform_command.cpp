@@ -24,12 +24,12 @@
 #include "app/row_sources.hpp"
 #include "ground/held_warnings.hpp"
 #include "ground/thread_start.hpp"
-#include "io/bvh.hpp"
-#include "io/bvh_write.hpp"
+#include "io/bvh/bvh_read.hpp"
+#include "io/bvh/bvh_write.hpp"
+#include "io/common/output.hpp"
 #include "io/document.hpp"
-#include "io/gltf.hpp"
+#include "io/gltf/gltf_read.hpp"
 #include "io/open.hpp"
-#include "io/output.hpp"
 #include "keyrot/reduce.hpp"
 
 namespace keyrot::detail {

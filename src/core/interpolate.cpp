@@ -9,7 +9,7 @@
 namespace keyrot {
 
 slerp_segment::slerp_segment(quat a, quat b) noexcept : a_(a), b_(b) {
-    // Szeliski's form (seed 004): b = a r; turn a by the fraction h of r.
+    // Szeliski's form (Computer Vision, Algorithm 2.1): b = a r; turn a by the fraction h of r.
     // The product is compensated, so r is accurate for keys that are close
     // or opposite, and atan2 keeps the angle accurate at both ends.
     const quat r = conjugate(a) * b;

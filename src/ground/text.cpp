@@ -6,6 +6,8 @@
 
 namespace keyrot {
 
+std::string errno_text(int err) { return std::strerror(err); }
+
 std::string_view trim(std::string_view text) noexcept {
     while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
     while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);

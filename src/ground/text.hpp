@@ -1,6 +1,7 @@
 #pragma once
 // Text, on the ground floor with the errors: UTF-8, trimming, and numbers
-// as CSV cells and the command line write them.
+// as CSV cells and the command line write them; the text of a system error.
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <optional>
@@ -8,6 +9,9 @@
 #include <string_view>
 
 namespace keyrot {
+
+/// What the system says error `err` is ("No such file or directory").
+std::string errno_text(int err = errno);
 
 /// True if `text` is well-formed UTF-8 (no overlong forms, no surrogates).
 bool is_valid_utf8(std::string_view text) noexcept;

@@ -5,7 +5,7 @@
 #include <optional>
 
 #include "ground/held_warnings.hpp"
-#include "io/io_json.hpp"
+#include "io/json/json.hpp"
 #include "io/open.hpp"
 
 namespace keyrot {

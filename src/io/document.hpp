@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "io/io.hpp"
-#include "io/source.hpp"
+#include "io/common/interface.hpp"
+#include "io/common/source.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {

@@ -1,13 +1,13 @@
 #include "io/open.hpp"
 
-#include "io/bvh.hpp"
-#include "io/fast/json_stream.hpp"
-#include "io/gltf.hpp"
-#include "io/gltf_write.hpp"
+#include "io/bvh/bvh_read.hpp"
+#include "io/csv/csv.hpp"
 #include "io/fast/read_ahead.hpp"
 #include "io/fast/row_pipeline.hpp"
-#include "io/io_csv.hpp"
-#include "io/io_json.hpp"
+#include "io/gltf/gltf_read.hpp"
+#include "io/gltf/gltf_write.hpp"
+#include "io/json/json.hpp"
+#include "io/json/json_stream.hpp"
 
 namespace keyrot {
 

@@ -8,8 +8,8 @@
 #include <ostream>
 #include <string>
 
-#include "io/io.hpp"
-#include "io/table_writer.hpp"
+#include "io/common/interface.hpp"
+#include "io/common/table_writer.hpp"
 
 namespace keyrot {
 

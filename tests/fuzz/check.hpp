@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "ground/text.hpp"
-#include "io/layout.hpp"
+#include "io/common/layout.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot::fuzz {

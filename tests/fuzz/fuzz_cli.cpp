@@ -11,8 +11,8 @@
 #include <iostream>
 #include <sstream>
 
-#include "check.hpp"
 #include "app/app.hpp"
+#include "check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace keyrot;

@@ -11,10 +11,10 @@
 
 #include "../json_same.hpp"
 #include "check.hpp"
+#include "io/common/interface.hpp"
 #include "io/document.hpp"
-#include "io/fast/flat_json.hpp"
-#include "io/io.hpp"
-#include "io/io_json.hpp"
+#include "io/json/flat_json.hpp"
+#include "io/json/json.hpp"
 #include "io/open.hpp"
 
 namespace {

@@ -3,7 +3,7 @@
 #include <functional>
 #include <memory>
 
-#include "io/line_keys.hpp"
+#include "io/common/line_keys.hpp"
 
 namespace keyrot {
 

@@ -1,0 +1,121 @@
+#pragma once
+// What the commands see of the formats: how keys are read (read_options,
+// key_reader, raw_key_sink) and how tables are written (table_info,
+// table_output). io/open.hpp opens them for a format.
+#include <functional>
+#include <istream>
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/common/format.hpp"
+#include "io/common/layout.hpp"
+#include "keyrot/track.hpp"
+
+namespace keyrot {
+
+/// Everything a reader needs besides the text.
+struct read_options {
+    std::string source;      ///< file name for messages, "<stdin>" for stdin
+    key_settings settings;   ///< from the flags; a document's own settings override them
+    quat_order order = quat_order::wxyz;
+    /// Which settings the user gave as flags (not defaults): a document
+    /// that states otherwise wins, with a warning.
+    struct {
+        bool angles = false, order = false;
+    } given;
+    /// Most bytes a JSON document or a glTF file read whole may take, and a
+    /// line of CSV, NDJSON or BVH: endless input (/dev/zero) ends in an
+    /// error, not in all memory.
+    std::size_t max_bytes = default_max_bytes;
+    std::size_t max_line_bytes = default_max_line_bytes;
+    /// glTF: the one animation to read, by name or index (--animation).
+    std::optional<std::string> animation;
+};
+
+/// Takes a JSON document's keys as they are read, track after track, so
+/// that its raw keys need not all be held at once.
+class raw_key_sink {
+public:
+    virtual ~raw_key_sink() = default;
+    /// Before each track's keys: its name, place and settings (no keys).
+    virtual void begin_track(raw_track header) = 0;
+    virtual void key(raw_key&& k) = 0;
+};
+
+/// Throws input_error for a track name with control characters.
+void check_track_name(const std::string& name, const std::string& where);
+
+/// A track name none of `taken` has, which it then takes: `name` itself,
+/// else `name.2`, `name.3`, ... (a second BVH joint or glTF node of one
+/// name). Never a '#' or a comma, which CSV readers treat apart.
+std::string distinct_track_name(const std::string& name, std::set<std::string>& taken);
+
+/// Keys one at a time from a document (CSV, NDJSON, a JSON document the
+/// streaming reader takes), in file order, so that a long track needs no
+/// more memory than a few keys.
+class key_reader {
+public:
+    virtual ~key_reader() = default;
+    /// The next key and the name of its track ("" without tracks); false at
+    /// the end. Throws input_error for a malformed line.
+    virtual bool next(std::string& track, raw_key& k) = 0;
+    /// The input names its tracks (a track column, "track" fields).
+    virtual bool named() const = 0;
+    /// Where the keys start (the CSV header), for "no keys" errors.
+    virtual location start() const = 0;
+    /// The settings of the track of the key next() gave last: a JSON
+    /// document's own fields over the flags; for line-based input, the
+    /// flags' for every key.
+    virtual const key_settings& settings() const = 0;
+    /// Once next() returned false: the reader stopped short of the end of
+    /// a document it does not read as read_json does (a JSON document the
+    /// streaming reader does not take), and what it gave does not count:
+    /// the document is to be read whole. Line-based input never is.
+    virtual bool declined() const { return false; }
+};
+
+/// Frame / key time columns of a table.
+enum class time_columns {
+    frame_and_time,  ///< resample: both
+    as_given,        ///< convert: JSON writes each key's own; CSV `frame` if all keys have one, `time` if any has one
+    time_only,       ///< slerp: the parameter, under time_name
+};
+
+/// What a writer must know before the first row.
+struct table_info {
+    bool named = false;  ///< write track names
+    channels carried;    ///< the channels some track carries
+    time_columns times = time_columns::frame_and_time;
+    bool all_frames = false;  ///< as_given: every row has a frame
+    bool any_time = true;     ///< as_given: some row has a time
+    bool counted = false;     ///< as_given: some row has a frame and no time (the frame rate times it)
+    std::string_view time_name = "time";
+    std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
+    std::optional<double> fps;              ///< the rate `frame` counts at, when rows have frames
+    std::optional<std::string_view> method;  ///< the interpolation's name, for a resampled table
+    bool operator==(const table_info&) const = default;
+};
+
+/// A table written row by row into -o FILE (a temporary file that replaces
+/// it at finish(), and is removed if finish() is never reached) or into a
+/// stream. begin_track comes before each track's rows (also for a single
+/// unnamed track). Large outputs are formatted on other threads and written
+/// in chunks as they fill.
+class table_output {
+public:
+    virtual ~table_output() = default;
+    /// `written`: how the track's rows are to be interpolated, which a glTF
+    /// output states (a table has no place for it).
+    virtual void begin_track(const std::string& name, channels carried, const track_interpolation& written) = 0;
+    /// convert's CUBICSPLINE key, before its row: what a glTF output keeps of it (a table, nothing).
+    virtual void key_spline(const full_spline_key&) {}
+    virtual void row(const sample& s) = 0;
+    /// Closes the document and puts out what is left (then commits the file).
+    virtual void finish() = 0;
+};
+
+}  // namespace keyrot

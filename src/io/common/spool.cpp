@@ -1,0 +1,70 @@
+#include "io/common/spool.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+
+#include "ground/text.hpp"
+#include "keyrot/error.hpp"
+
+namespace keyrot {
+namespace {
+
+/// Bytes gathered in memory before they go to the file, and read back at once.
+constexpr std::size_t block_bytes = std::size_t{1} << 16;
+
+template <class Io, class Bytes>
+bool whole(Io io, int fd, Bytes bytes, std::size_t size, off_t offset) {
+    while (size > 0) {
+        const ssize_t n = io(fd, bytes, size, offset);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) return false;
+        bytes += n, size -= static_cast<std::size_t>(n), offset += n;
+    }
+    return true;
+}
+
+}  // namespace
+
+bool transfer_whole(ssize_t (*io)(int, void*, std::size_t, off_t), int fd, char* bytes, std::size_t size, off_t offset) {
+    return whole(io, fd, bytes, size, offset);
+}
+
+bool transfer_whole(ssize_t (*io)(int, const void*, std::size_t, off_t), int fd, const char* bytes, std::size_t size,
+                    off_t offset) {
+    return whole(io, fd, bytes, size, offset);
+}
+
+byte_spool::byte_spool() : file_(std::tmpfile()) {}
+
+byte_spool::~byte_spool() {
+    if (file_) std::fclose(file_);
+}
+
+void byte_spool::append(std::string_view bytes) {
+    block_ += bytes;
+    size_ += bytes.size();
+    if (file_ && block_.size() >= block_bytes) flush();
+}
+
+void byte_spool::flush() {
+    const auto at = static_cast<off_t>(size_ - block_.size());
+    if (!transfer_whole(::pwrite, ::fileno(file_), block_.data(), block_.size(), at))
+        throw error(fmt::format("cannot set output aside in a temporary file: {}", errno_text()));
+    block_.clear();
+}
+
+void byte_spool::each_block(const std::function<void(std::string_view)>& f) {
+    const std::size_t in_file = size_ - block_.size();
+    std::string read(std::min(in_file, block_bytes), '\0');
+    for (std::size_t at = 0; at < in_file; at += read.size()) {
+        read.resize(std::min(block_bytes, in_file - at));
+        if (!transfer_whole(::pread, ::fileno(file_), read.data(), read.size(), static_cast<off_t>(at)))
+            throw error(fmt::format("cannot read back a temporary file: {}", errno_text()));
+        f(read);
+    }
+    if (!block_.empty()) f(block_);
+}
+
+}  // namespace keyrot

@@ -1,0 +1,42 @@
+#pragma once
+// The writers of the formats, row by row into a string: what open_table
+// (io/open.hpp) puts out, on formatting threads or not. Internal to io.
+#include <memory>
+#include <string>
+
+#include "io/common/interface.hpp"
+
+namespace keyrot {
+
+/// Writes rows one at a time into `out`. begin_track comes before each
+/// track's rows (also for a single unnamed track); finish closes the document.
+class table_writer {
+public:
+    virtual ~table_writer() = default;
+    virtual void begin_track(const std::string& name, channels carried) = 0;
+    virtual void row(const sample& s) = 0;
+    virtual void finish() = 0;
+    /// For formatting rows on several threads: a writer of the same rows into
+    /// `out` that writes nothing else (no header, nothing at finish), or
+    /// nullptr where a row's text depends on the rows before it (JSON).
+    virtual std::unique_ptr<table_writer> row_writer(std::string& out) const = 0;
+};
+
+/// A row's rotation values; Euler output warns once about gimbal lock.
+rotation_values row_values(const sample& s, const write_options& opts, warnings& warn);
+
+/// What an output of format `f` states about itself, as the members of a
+/// JSON object: a JSON document's first fields, an NDJSON header line, a
+/// CSV "# keyrot" line. With settings_line::always (a JSON document's), all
+/// that describe it:
+/// `"fps": 24, "method": "slerp", "rep": "quat", "angles": "degrees", "quat_order": "wxyz"`
+/// (fps and method when known, euler and quat_order where the rep has
+/// them); with needed, only what keyrot, reading the rows back with no
+/// flags, would otherwise misread without a word: the rate of frame
+/// numbers without times when it is not default_key_fps, angles in
+/// radians, the order of NDJSON's quaternion arrays when it is not wxyz
+/// (an Euler sequence has no default: read without one, it is refused,
+/// naming --euler). Empty with never, or when nothing is needed.
+std::string settings_members(const table_info& info, const write_options& opts, settings_line which, format f);
+
+}  // namespace keyrot

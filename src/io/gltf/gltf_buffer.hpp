@@ -1,0 +1,70 @@
+#pragma once
+// What both glTF writers share (the one that rewrites a glTF input, the one
+// that makes a new file): the output's buffer with its bufferViews and
+// accessors, 32-bit floats, and the file written at the end (a .glb, a
+// .gltf with its .bin, or a .gltf with its buffer as a data: URI).
+#include <cmath>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/common/output.hpp"
+#include "io/common/spool.hpp"
+#include "io/gltf/gltf_file.hpp"
+#include "keyrot/error.hpp"
+#include "keyrot/method.hpp"
+
+namespace keyrot::detail {
+
+/// `v` as glTF stores a FLOAT: 4 bytes, little-endian, appended to `out`.
+void append_float(std::string& out, float v);
+
+/// `v` as a 32-bit float; an input_error at `where` ("walk.csv: track 'hip'") where it is too large for one.
+float single(double v, const std::string& where, const char* what);
+
+/// As single(), with `where` called for the place only when there is an error to name it in.
+float single_at(double v, const auto& where, const char* what) {
+    const auto f = static_cast<float>(v);
+    return std::isfinite(f) ? f : single(v, where(), what);
+}
+
+/// A sampler's interpolation for method `m`: STEP, CUBICSPLINE, or LINEAR.
+const char* interpolation_name(method m);
+
+/// The binary buffer of the output, its bufferViews and accessors appended
+/// to `json`'s.
+class buffer_builder {
+public:
+    /// `input`: the source of the rows, for messages.
+    buffer_builder(gltf_json& json, std::string input) : source(std::move(input)), json_(json) {}
+    std::string source;
+    byte_spool bin;
+
+    /// A bufferView of `data`, starting at an offset with the given remainder mod 4.
+    std::size_t view(std::string_view data, std::size_t remainder = 0);
+    /// A bufferView of what `data` holds.
+    std::size_t view(byte_spool& data);
+    /// A FLOAT accessor of `values` (`width` per element), with min and max when `bounds`.
+    std::size_t accessor(const std::vector<float>& values, std::size_t width, bool bounds);
+    /// A FLOAT accessor of `count` elements of `width` in bufferView `view`,
+    /// with the bounds `lo` and `hi` where they are given.
+    std::size_t accessor(std::size_t view, std::size_t count, std::size_t width, const std::vector<float>& lo,
+                         const std::vector<float>& hi);
+
+private:
+    std::size_t begin_view(std::size_t length, std::size_t remainder);
+    std::size_t append(const char* name, gltf_json value);
+    gltf_json& json_;
+};
+
+/// Writes `json` and the buffer `bin` as a file of format `f` (its
+/// buffers[0] is the buffer): to `target` (a .gltf's buffer in the .bin
+/// beside it; both written, then put in place as `commit` says, the .bin
+/// first) or to `out` (a .gltf with its buffer as a data: URI). The
+/// buffer goes out a block at a time.
+void put_file(gltf_json& json, byte_spool& bin, format f, const std::optional<std::string>& target,
+              commit_mode commit, std::ostream& out);
+
+}  // namespace keyrot::detail

@@ -1,0 +1,171 @@
+// A new glTF file (of CSV, JSON or BVH) written as its rows come, in
+// memory that does not grow with the take (make_new_gltf_file).
+#include "io/gltf/gltf_write.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <tuple>
+
+#include "io/gltf/gltf_buffer.hpp"
+#include "io/json/json.hpp"
+
+namespace keyrot {
+namespace {
+
+using namespace detail;
+
+/// A channel of `animation.channels`: sampler `sampler` animates `path` of node `node`.
+gltf_json channel_json(std::size_t sampler, std::size_t node, const char* path) {
+    gltf_json c = gltf_json::object();
+    c["sampler"] = sampler;
+    c["target"] = gltf_json::object();
+    c["target"]["node"] = node;
+    c["target"]["path"] = path;
+    return c;
+}
+
+/// A new file (a node per track, or the nodes of a skeleton, and one
+/// animation) written as the rows come: each channel's 32-bit floats are
+/// set aside in a temporary file, and a track's are appended to the buffer
+/// when it ends, so that memory does not grow with the take. A row is
+/// LINEAR or STEP, never CUBICSPLINE (only a glTF input has splines).
+class new_file_table final : public table_output {
+public:
+    new_file_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
+                   std::vector<gltf_node> skeleton, warnings& warn)
+        : f_(f), target_(target), commit_(commit), out_(out), skeleton_(std::move(skeleton)),
+          b_(json_, warn.source()) {}
+    void begin_track(const std::string& name, channels carried, const track_interpolation& written) override {
+        end_track();
+        if (carried.weights)
+            throw input_error(b_.source, fmt::format("track '{}' has morph weights, which a new glTF file cannot hold "
+                                                     "without the mesh they weigh: expected a glTF input, whose file "
+                                                     "is rewritten, or another output format",
+                                                     name));
+        tracks_.push_back({name, written, {}});
+        for (spooled_channel* c : {&rotation_, &translation_, &scale_}) c->clear();
+    }
+    void row(const sample& s) override {
+        // (the track's name in a message only when there is one to give)
+        const auto where = [&] {
+            const std::string& name = tracks_.back().name;
+            return name.empty() ? b_.source : fmt::format("{}: track '{}'", b_.source, name);
+        };
+        const float time = single_at(s.time, where, "time");
+        if (rotation_.count && !(time > rotation_.last))
+            throw input_error(where(), fmt::format("times {} s and {} s are one 32-bit float, as glTF stores them: "
+                                                   "expected keys further apart (a lower --fps)",
+                                                   previous_time_, s.time));
+        previous_time_ = s.time;
+        rotation_.add(time, {s.rotation.x, s.rotation.y, s.rotation.z, s.rotation.w}, where, "rotation");
+        if (s.translation)
+            translation_.add(time, {s.translation->x, s.translation->y, s.translation->z}, where, "translation");
+        if (s.scale) scale_.add(time, {s.scale->x, s.scale->y, s.scale->z}, where, "scale");
+    }
+    void finish() override {
+        end_track();
+        std::vector<gltf_node> skeleton = skeleton_;
+        if (skeleton.empty())
+            for (std::size_t i = 0; i < tracks_.size(); ++i)
+                skeleton.push_back({tracks_[i].name.empty() ? "track" : tracks_[i].name, std::nullopt, {}, i});
+        if (std::count_if(skeleton.begin(), skeleton.end(), [](const gltf_node& n) { return n.track.has_value(); }) !=
+            static_cast<std::ptrdiff_t>(tracks_.size()))
+            throw input_error(b_.source, fmt::format("{} tracks for a skeleton of {} nodes: expected a track per "
+                                                     "animated joint",
+                                                     tracks_.size(), skeleton.size()));
+        gltf_json json = gltf_json::object();
+        json["asset"] = {{"version", "2.0"}, {"generator", "keyrot"}};
+        json["scene"] = 0;
+        json["scenes"] = gltf_json::array({{{"nodes", gltf_json::array()}}});
+        json["nodes"] = gltf_json::array();
+        gltf_json channels = gltf_json::array();
+        for (std::size_t k = 0; k < skeleton.size(); ++k) {
+            const gltf_node& n = skeleton[k];
+            json_quote(n.name);  // throws for a name that is not UTF-8, which JSON cannot hold
+            gltf_json node = {{"name", n.name}};
+            const vec3& t = n.translation;
+            if (t.x != 0 || t.y != 0 || t.z != 0)
+                for (const double x : {t.x, t.y, t.z}) node["translation"].push_back(single(x, b_.source, "offset"));
+            json["nodes"].push_back(std::move(node));
+            if (n.parent) json["nodes"][*n.parent]["children"].push_back(k);
+            else json["scenes"][0]["nodes"].push_back(k);
+            if (!n.track) continue;
+            for (const auto& [path, sampler] : tracks_[*n.track].samplers)
+                channels.push_back(channel_json(sampler, k, path));
+        }
+        for (const char* name : {"bufferViews", "accessors"})
+            if (json_.contains(name)) json[name] = std::move(json_[name]);
+        json["animations"] = gltf_json::array({{{"channels", std::move(channels)}, {"samplers", std::move(samplers_)}}});
+        json["buffers"] = gltf_json::array({gltf_json::object()});
+        put_file(json, b_.bin, f_, target_, commit_, out_);
+    }
+
+private:
+    /// A channel of the current track: its key times and values as 32-bit floats, set aside.
+    struct spooled_channel {
+        byte_spool times, values;
+        std::size_t count = 0;
+        float first = 0, last = 0;
+        void clear() { times.clear(), values.clear(), count = 0; }
+        void add(float time, std::initializer_list<double> value, const auto& where, const char* what) {
+            std::string bytes;
+            append_float(bytes, time);
+            times.append(bytes);
+            bytes.clear();
+            for (const double v : value) append_float(bytes, single_at(v, where, what));
+            values.append(bytes);
+            if (count++ == 0) first = time;
+            last = time;
+        }
+    };
+    struct written_track {
+        std::string name;
+        track_interpolation how;
+        std::vector<std::pair<const char*, std::size_t>> samplers;  // (path, sampler)
+    };
+
+    /// The current track's channels into the buffer, as samplers (the
+    /// rotation's times shared by a channel keyed on every row).
+    void end_track() {
+        if (tracks_.empty() || !tracks_.back().samplers.empty() || rotation_.count == 0) return;
+        written_track& t = tracks_.back();
+        std::optional<std::size_t> rotation_times;
+        for (const auto& [c, path, width, how] : {std::tuple(&rotation_, "rotation", 4, t.how.rotation),
+                                                  std::tuple(&translation_, "translation", 3, t.how.translation),
+                                                  std::tuple(&scale_, "scale", 3, t.how.scale)}) {
+            if (c->count == 0) continue;
+            const auto times = [&, c = c] { return b_.accessor(b_.view(c->times), c->count, 1, {c->first}, {c->last}); };
+            std::size_t input;
+            if (c->count != rotation_.count) input = times();
+            else input = rotation_times ? *rotation_times : *(rotation_times = times());
+            gltf_json sampler = gltf_json::object();
+            sampler["input"] = input;
+            sampler["interpolation"] = interpolation_name(how);
+            sampler["output"] = b_.accessor(b_.view(c->values), c->count, static_cast<std::size_t>(width), {}, {});
+            samplers_.push_back(std::move(sampler));
+            t.samplers.emplace_back(path, samplers_.size() - 1);
+        }
+    }
+
+    format f_;
+    std::optional<std::string> target_;
+    commit_mode commit_;
+    std::ostream& out_;
+    std::vector<gltf_node> skeleton_;
+    gltf_json json_ = gltf_json::object();  // the bufferViews and accessors, as they are made
+    buffer_builder b_;
+    gltf_json samplers_ = gltf_json::array();
+    std::vector<written_track> tracks_;
+    spooled_channel rotation_, translation_, scale_;
+    double previous_time_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<table_output> make_new_gltf_file(format f, const std::optional<std::string>& target, std::ostream& out,
+                                                 commit_mode commit, std::vector<gltf_node> skeleton, warnings& warn) {
+    return std::make_unique<new_file_table>(f, target, out, commit, std::move(skeleton), warn);
+}
+
+}  // namespace keyrot

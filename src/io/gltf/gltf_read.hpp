@@ -1,0 +1,45 @@
+#pragma once
+// glTF 2.0 animations as tracks: one track per animated node (and
+// animation), its rotation, translation, scale and morph weights channels
+// merged on one list of key times, interpolated as their samplers say.
+#include <istream>
+#include <memory>
+#include <string>
+
+#include "io/common/interface.hpp"
+#include "io/gltf/gltf_file.hpp"
+
+namespace keyrot {
+
+/// Where a track of a glTF file came from: its animation and node, and the
+/// channels (indices into the animation's channels) it merges.
+struct gltf_track_origin {
+    std::size_t animation = 0, node = 0;
+    std::optional<std::size_t> rotation, translation, scale, weights;
+    std::size_t targets = 0;  ///< with weights: the morph targets of the node's mesh
+};
+
+/// A glTF input, kept for a glTF output that rewrites it: the file, and
+/// the origin of each of the document's tracks, in their order.
+struct gltf_source {
+    gltf_file file;
+    std::vector<gltf_track_origin> origins;
+};
+
+/// The keys of a glTF file (`f`: gltf or glb; relative buffer URIs from the
+/// directory of ro.source), track after track: every animation's, or the
+/// one ro.animation names. A track is a node's rotation, translation,
+/// scale and weights channels in one animation, named after the node ("node<i>" when
+/// unnamed), prefixed "<animation>/" when several animations are read.
+/// Where the channels are keyed at different times, each gets a key at the
+/// other's times too, its value on its own curve there (so the curve is the
+/// same). A track's settings() state its samplers' interpolation. Throws
+/// input_error naming the JSON path: "walk.glb: animations[0].samplers[2]
+/// .output: accessor 14 ...".
+std::unique_ptr<key_reader> make_gltf_reader(std::istream& in, format f, const read_options& ro, warnings& warn);
+
+/// The file, and the origin of each track make_gltf_reader gives, for a
+/// glTF output that rewrites it.
+std::shared_ptr<gltf_source> read_gltf_source(std::istream& in, format f, const read_options& ro, warnings& warn);
+
+}  // namespace keyrot

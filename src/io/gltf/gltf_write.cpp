@@ -1,0 +1,367 @@
+#include "io/gltf/gltf_write.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "io/common/output.hpp"
+#include "io/gltf/gltf_buffer.hpp"
+
+namespace keyrot {
+namespace {
+
+using namespace detail;
+
+/// Extensions whose references to accessors and bufferViews this writer
+/// renumbers, or which hold none, beyond harmless_extension's: a file that
+/// uses any other is not rewritten, since an index it holds could come to
+/// name the wrong data.
+const std::set<std::string, std::less<>> renumbered_extensions = {"EXT_lights_image_based",
+                                                                  "EXT_mesh_gpu_instancing",
+                                                                  "KHR_animation_pointer",
+                                                                  "KHR_draco_mesh_compression",
+                                                                  "KHR_materials_anisotropy",
+                                                                  "KHR_materials_dispersion",
+                                                                  "KHR_materials_pbrSpecularGlossiness",
+                                                                  "KHR_xmp_json_ld",
+                                                                  "MSFT_lod",
+                                                                  "MSFT_texture_dds"};
+
+/// Calls f on each member of `j` at `path` (names; "*" for every element
+/// or member) that exists.
+template <class F>
+void at_path(gltf_json& j, std::initializer_list<const char*> path, F&& f) {
+    const auto walk = [&](auto& self, gltf_json& here, const char* const* step, const char* const* end) -> void {
+        if (step == end) return f(here);
+        if (std::strcmp(*step, "*") == 0) {
+            if (here.is_array() || here.is_object())
+                for (auto& element : here) self(self, element, step + 1, end);
+        } else if (here.is_object()) {
+            if (const auto it = here.find(*step); it != here.end()) self(self, *it, step + 1, end);
+        }
+    };
+    walk(walk, j, path.begin(), path.end());
+}
+
+/// f(reference) for every reference to an accessor the writer knows of.
+template <class F>
+void accessor_refs(gltf_json& j, F&& f) {
+    at_path(j, {"meshes", "*", "primitives", "*", "attributes", "*"}, f);
+    at_path(j, {"meshes", "*", "primitives", "*", "indices"}, f);
+    at_path(j, {"meshes", "*", "primitives", "*", "targets", "*", "*"}, f);
+    at_path(j, {"skins", "*", "inverseBindMatrices"}, f);
+    at_path(j, {"animations", "*", "samplers", "*", "input"}, f);
+    at_path(j, {"animations", "*", "samplers", "*", "output"}, f);
+    at_path(j, {"nodes", "*", "extensions", "EXT_mesh_gpu_instancing", "attributes", "*"}, f);
+}
+
+/// f(reference) for every reference to a bufferView the writer knows of.
+template <class F>
+void view_refs(gltf_json& j, F&& f) {
+    at_path(j, {"accessors", "*", "bufferView"}, f);
+    at_path(j, {"accessors", "*", "sparse", "indices", "bufferView"}, f);
+    at_path(j, {"accessors", "*", "sparse", "values", "bufferView"}, f);
+    at_path(j, {"images", "*", "bufferView"}, f);
+    at_path(j, {"meshes", "*", "primitives", "*", "extensions", "KHR_draco_mesh_compression", "bufferView"}, f);
+}
+
+/// Keeps the elements of top-level array `name` whose index `keep` holds,
+/// and renumbers the references `refs` visits.
+template <class Refs>
+void compact(gltf_json& j, const char* name, const std::vector<bool>& keep, Refs&& refs) {
+    std::vector<std::size_t> renumbered(keep.size(), 0);
+    gltf_json array = gltf_json::array();
+    for (std::size_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) renumbered[i] = array.size(), array.push_back(std::move(j[name][i]));
+    refs(j, [&](gltf_json& ref) {
+        if (ref.is_number_unsigned() && ref.get<std::size_t>() < keep.size()) ref = renumbered[ref.get<std::size_t>()];
+    });
+    if (array.empty())
+        j.erase(name);
+    else
+        j[name] = std::move(array);
+}
+
+/// Times as 32-bit floats, still strictly increasing.
+std::vector<float> time_values(const std::vector<double>& times, const std::string& where) {
+    std::vector<float> out;
+    out.reserve(times.size());
+    for (const double t : times) {
+        out.push_back(single(t, where, "time"));
+        if (out.size() > 1 && !(out.back() > out[out.size() - 2]))
+            throw input_error(where, fmt::format("times {} s and {} s are one 32-bit float, as glTF stores them: "
+                                                 "expected keys further apart (a lower --fps)",
+                                                 times[out.size() - 2], t));
+    }
+    return out;
+}
+
+/// The channels of a node keyrot writes, by their glTF target path.
+enum class gltf_path { rotation, translation, scale, weights };
+
+const char* path_name(gltf_path p) {
+    switch (p) {
+        case gltf_path::rotation: return "rotation";
+        case gltf_path::translation: return "translation";
+        case gltf_path::scale: return "scale";
+        case gltf_path::weights: break;
+    }
+    return "weights";
+}
+
+/// Track `t`'s values of channel `path` (not the rotation), and how they are interpolated.
+std::pair<const gltf_vectors*, method> vectors_of(const gltf_track& t, gltf_path path) {
+    switch (path) {
+        case gltf_path::translation: return {&t.translation, t.how.translation};
+        case gltf_path::scale: return {&t.scale, t.how.scale};
+        case gltf_path::weights: return {&t.weights, t.how.weights};
+        case gltf_path::rotation: break;
+    }
+    return {nullptr, t.how.rotation};
+}
+
+/// A sampler of track `t`'s channel `path` into `animation`; returns its index.
+std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_track& t, gltf_path path,
+                        std::map<const std::vector<double>*, std::size_t>& inputs) {
+    const auto [vectors, how] = vectors_of(t, path);
+    const std::vector<double>& times = vectors ? vectors->times : t.times;
+    // Channels on the rotation's times share its input.
+    const std::vector<double>* input_times = vectors && vectors->times == t.times ? &t.times : &times;
+    const std::string where = t.name.empty() ? b.source : fmt::format("{}: track '{}'", b.source, t.name);
+    auto input = inputs.find(input_times);
+    if (input == inputs.end()) input = inputs.emplace(input_times, b.accessor(time_values(times, where), 1, true)).first;
+    std::vector<float> values;
+    const auto put = [&](std::initializer_list<double> v) {
+        for (const double x : v) values.push_back(single(x, where, path_name(path)));
+    };
+    const auto put_span = [&](const std::vector<double>& v, std::size_t row, std::size_t w) {
+        for (std::size_t j = 0; j < w; ++j) put({v[row * w + j]});
+    };
+    const bool spline = how == method::cubicspline;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+        if (vectors) {
+            const std::size_t w = vectors->width;
+            if (spline) put_span(vectors->tangents, 2 * i, w);
+            put_span(vectors->values, i, w);
+            if (spline) put_span(vectors->tangents, 2 * i + 1, w);
+        } else if (spline) {
+            const spline_key& s = t.splines[i];
+            for (const quat& q : {s.rotation_in, s.rotation, s.rotation_out}) put({q.x, q.y, q.z, q.w});
+        } else {
+            const quat& q = t.rotations[i];
+            put({q.x, q.y, q.z, q.w});
+        }
+    }
+    gltf_json sampler = gltf_json::object();
+    sampler["input"] = input->second;
+    sampler["interpolation"] = interpolation_name(how);
+    // (weights are SCALAR, a weight per morph target in each key's element)
+    sampler["output"] = b.accessor(values, !vectors ? 4 : path == gltf_path::weights ? 1 : 3, false);
+    animation["samplers"].push_back(std::move(sampler));
+    return animation["samplers"].size() - 1;
+}
+
+/// The input file with the samplers of the channels keyrot read replaced.
+void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_builder& b, gltf_json& json,
+             warnings& warn) {
+    gltf_file& file = source.file;
+    for (const auto& name : json.value("extensionsUsed", gltf_json::array()))
+        if (!name.is_string() ||
+            !(harmless_extension(name.get<std::string>()) || renumbered_extensions.contains(name.get<std::string>())))
+            throw input_error(file.source,
+                              fmt::format("extensionsUsed: {} may refer to data keyrot would move: expected "
+                                          "a file without it, or output in another format",
+                                          excerpt(name.dump())));
+    // Replaced channels: (animation, channel) -> (track, path).
+    std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, gltf_path>> replaced;
+    for (std::size_t i = 0; i < tracks.size(); ++i) {
+        const gltf_track_origin& o = source.origins[i];
+        if (o.rotation) replaced[{o.animation, *o.rotation}] = {i, gltf_path::rotation};
+        if (o.translation) replaced[{o.animation, *o.translation}] = {i, gltf_path::translation};
+        if (o.scale) replaced[{o.animation, *o.scale}] = {i, gltf_path::scale};
+        if (o.weights) replaced[{o.animation, *o.weights}] = {i, gltf_path::weights};
+    }
+    // The old samplers of replaced channels leave; kept ones are renumbered.
+    std::vector<bool> dropped_accessor(top_array(file, "accessors").size(), false);
+    std::set<std::size_t> animations;
+    for (const auto& [at, track] : replaced) animations.insert(at.first);
+    std::size_t kept_channels = 0;
+    for (const std::size_t a : animations) {
+        gltf_json& anim = json["animations"][a];
+        std::vector<bool> keep(anim["samplers"].size(), false);
+        for (std::size_t c = 0; c < anim["channels"].size(); ++c) {
+            if (replaced.contains({a, c})) continue;
+            const gltf_json& sampler =
+                anim["channels"][c]["sampler"];  // (the reader checked each channel is an object)
+            if (!sampler.is_number_unsigned() || sampler.get<std::size_t>() >= keep.size())
+                throw input_error(
+                    fmt::format("{}: animations[{}].channels[{}].sampler", file.source, a, c),
+                    fmt::format("{}: expected an index into animations[{}].samplers", excerpt(sampler.dump()), a));
+            keep[sampler.get<std::size_t>()] = true;
+            ++kept_channels;
+        }
+        gltf_json samplers = gltf_json::array();
+        std::vector<std::size_t> renumbered(keep.size(), 0);
+        for (std::size_t s = 0; s < keep.size(); ++s) {
+            if (keep[s]) {
+                renumbered[s] = samplers.size();
+                samplers.push_back(anim["samplers"][s]);
+            } else if (const gltf_json& old = anim["samplers"][s]; old.is_object()) {  // (not one no channel used)
+                for (const char* end : {"input", "output"})
+                    if (const auto ref = old.find(end); ref != old.end() && ref->is_number_unsigned() &&
+                                                        ref->get<std::size_t>() < dropped_accessor.size())
+                        dropped_accessor[ref->get<std::size_t>()] = true;
+            }
+        }
+        for (std::size_t c = 0; c < anim["channels"].size(); ++c)
+            if (!replaced.contains({a, c}))
+                anim["channels"][c]["sampler"] = renumbered[anim["channels"][c]["sampler"].get<std::size_t>()];
+        anim["samplers"] = std::move(samplers);
+    }
+    if (kept_channels)
+        warn.once("gltf-kept",
+                  fmt::format("{} channel{} keyrot does not read kept as {} were",
+                              kept_channels, kept_channels == 1 ? "" : "s", kept_channels == 1 ? "it" : "they"));
+    // An accessor still referred to stays (another sampler, a mesh may share it).
+    accessor_refs(json, [&](gltf_json& ref) {
+        if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_accessor.size())
+            dropped_accessor[ref.get<std::size_t>()] = false;
+    });
+    std::vector<bool> keep_accessor(dropped_accessor.size());
+    for (std::size_t i = 0; i < keep_accessor.size(); ++i) keep_accessor[i] = !dropped_accessor[i];
+    // The bufferViews only dropped accessors used leave with them.
+    std::vector<bool> dropped_view(top_array(file, "bufferViews").size(), false);
+    for (std::size_t i = 0; i < dropped_accessor.size(); ++i)
+        if (dropped_accessor[i]) {
+            gltf_json one = {{"accessors", gltf_json::array({json["accessors"][i]})}};
+            view_refs(one, [&](gltf_json& ref) {
+                if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_view.size())
+                    dropped_view[ref.get<std::size_t>()] = true;
+            });
+        }
+    compact(json, "accessors", keep_accessor, [](gltf_json& j, auto&& f) { accessor_refs(j, f); });
+    view_refs(json, [&](gltf_json& ref) {
+        if (ref.is_number_unsigned() && ref.get<std::size_t>() < dropped_view.size())
+            dropped_view[ref.get<std::size_t>()] = false;
+    });
+    std::vector<bool> keep_view(dropped_view.size());
+    for (std::size_t i = 0; i < keep_view.size(); ++i) keep_view[i] = !dropped_view[i];
+    // The kept views' bytes, from whichever buffer, into the one buffer of the output.
+    compact(json, "bufferViews", keep_view, [](gltf_json& j, auto&& f) { view_refs(j, f); });
+    const gltf_json views = json.contains("bufferViews") ? std::move(json["bufferViews"]) : gltf_json::array();
+    json.erase("bufferViews");
+    for (std::size_t v = 0; v < views.size(); ++v) {
+        const std::string where = fmt::format("{}: bufferViews[{}]", file.source, v);
+        if (!views[v].is_object() || !views[v].contains("buffer"))
+            throw input_error(where, "expected an object with a buffer");
+        const std::size_t buffer = index_into(file, views[v]["buffer"], "buffers", where);
+        const std::string_view bytes = buffer_bytes(file, buffer);
+        const std::size_t offset = unsigned_member(views[v], "byteOffset", 0, where);
+        const std::size_t length = unsigned_member(views[v], "byteLength", 0, where);
+        if (offset > bytes.size() || length > bytes.size() - offset)
+            throw input_error(
+                where, fmt::format("bytes {} to {} read past the end of buffer {}", offset, offset + length, buffer));
+        // At the same offset modulo 4, so that the accessors in it stay aligned.
+        gltf_json& view = json["bufferViews"][b.view(bytes.substr(offset, length), offset % 4)];
+        const gltf_json placed = view["byteOffset"];
+        view = views[v];
+        view["buffer"] = 0;
+        view["byteOffset"] = placed;
+    }
+    // The new samplers and channels.
+    std::map<std::size_t, std::map<const std::vector<double>*, std::size_t>> inputs;  // per animation
+    for (const auto& [at, who] : replaced) {
+        const auto [a, c] = at;
+        const auto [i, path] = who;
+        gltf_json& anim = json["animations"][a];
+        anim["channels"][c]["sampler"] = add_sampler(b, anim, tracks[i], path, inputs[a]);
+    }
+}
+
+/// Relative image URIs of the input, made relative to where the output goes.
+void move_image_uris(gltf_json& json, const std::string& from_directory, const std::optional<std::string>& target) {
+    const std::filesystem::path to =
+        target ? std::filesystem::absolute(*target).parent_path() : std::filesystem::current_path();
+    at_path(json, {"images", "*", "uri"}, [&](gltf_json& uri) {
+        if (!uri.is_string()) return;
+        const std::string u = uri;
+        if (u.starts_with("data:") || u.find("://") != std::string::npos || u.starts_with("/")) return;
+        const auto moved = std::filesystem::absolute(std::filesystem::path(from_directory) / u).lexically_relative(to);
+        if (!moved.empty()) uri = moved.generic_string();
+    });
+}
+
+/// A glTF input's tracks gathered, and written at finish() as that file
+/// with the samplers of the channels keyrot read replaced.
+class rewritten_table final : public table_output {
+public:
+    rewritten_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
+                    std::shared_ptr<gltf_source> source, warnings& warn)
+        : f_(f), target_(target), commit_(commit), out_(out), source_(std::move(source)), warn_(warn) {}
+    void begin_track(const std::string& name, channels, const track_interpolation& written) override {
+        tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
+    }
+    void key_spline(const full_spline_key& s) override { spline_ = s; }
+    void row(const sample& s) override {
+        gltf_track& t = tracks_.back();
+        t.times.push_back(s.time);
+        t.rotations.push_back(s.rotation);
+        if (t.how.rotation == method::cubicspline) t.splines.push_back(spline_);
+        const auto put = [&](gltf_vectors& v, const std::optional<vec3>& value, method how, vec3 in, vec3 out) {
+            if (!value) return;
+            v.times.push_back(s.time);
+            v.values.insert(v.values.end(), {value->x, value->y, value->z});
+            if (how == method::cubicspline) v.tangents.insert(v.tangents.end(), {in.x, in.y, in.z, out.x, out.y, out.z});
+        };
+        put(t.translation, s.translation, t.how.translation, spline_.translation_in, spline_.translation_out);
+        put(t.scale, s.scale, t.how.scale, spline_.scale_in, spline_.scale_out);
+        if (!s.weights.empty()) {
+            gltf_vectors& w = t.weights;
+            w.width = s.weights.size();
+            w.times.push_back(s.time);
+            w.values.insert(w.values.end(), s.weights.begin(), s.weights.end());
+            if (t.how.weights == method::cubicspline)
+                for (const morph_weights* tangent : {&spline_.weights_in, &spline_.weights_out})
+                    for (std::size_t j = 0; j < w.width; ++j) w.tangents.push_back(j < tangent->size() ? (*tangent)[j] : 0);
+        }
+    }
+    void finish() override {
+        gltf_json json = source_->file.json;
+        buffer_builder b(json, warn_.source());
+        gltf_json buffer = gltf_json::object();
+        if (const auto& buffers = top_array(source_->file, "buffers"); !buffers.empty() && buffers[0].is_object())
+            buffer = buffers[0];
+        try {
+            rewrite(tracks_, *source_, b, json, warn_);
+        } catch (const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
+            throw input_error(source_->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
+        }
+        move_image_uris(json, source_->file.directory, target_);
+        buffer.erase("uri");
+        json["buffers"] = gltf_json::array({buffer});
+        put_file(json, b.bin, f_, target_, commit_, out_);
+    }
+
+private:
+    format f_;
+    std::optional<std::string> target_;
+    commit_mode commit_;
+    std::ostream& out_;
+    std::shared_ptr<gltf_source> source_;
+    warnings& warn_;
+    std::vector<gltf_track> tracks_;
+    full_spline_key spline_;
+};
+
+}  // namespace
+
+std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
+                                              commit_mode commit, std::shared_ptr<gltf_source> source,
+                                              std::vector<gltf_node> skeleton, warnings& warn) {
+    if (source) return std::make_unique<rewritten_table>(f, target, out, commit, std::move(source), warn);
+    return make_new_gltf_file(f, target, out, commit, std::move(skeleton), warn);
+}
+
+}  // namespace keyrot
