@@ -13,7 +13,6 @@
 
 #include "ground/text.hpp"
 #include "io/common/line_reader.hpp"
-#include "io/common/number_writer.hpp"
 #include "io/json/flat_json.hpp"
 #include "io/json/json_keys.hpp"
 
