@@ -4,7 +4,8 @@
 # belong; a program of one's own (examples/slerp_between) builds against
 # the installed package and nothing of keyrot's own compile flags reaches
 # it; `cpack -G DEB` gives keyrot and libkeyrot-dev packages whose fields
-# and files are right, and which install into a scratch root and work.
+# and files are right, which lintian passes, and which install into a
+# scratch root and work.
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR
 set -uo pipefail
 build=$(realpath "$1")
@@ -19,9 +20,10 @@ version=$("$build/keyrot" --version | cut -d' ' -f2)
 # 1. cmake --install
 prefix=$scratch/prefix
 cmake --install "$build" --prefix "$prefix" >"$scratch/install.log" || fail "cmake --install: $(tail -3 "$scratch/install.log")"
-for file in bin/keyrot share/man/man1/keyrot.1 share/bash-completion/completions/keyrot lib/libkeyrot_core.a \
+for file in bin/keyrot share/man/man1/keyrot.1.gz share/bash-completion/completions/keyrot lib/libkeyrot_core.a \
     include/keyrot/quat.hpp include/keyrot/interpolate.hpp include/keyrot/convert.hpp \
-    lib/cmake/keyrot/keyrot-config.cmake lib/cmake/keyrot/keyrot-config-version.cmake; do
+    lib/cmake/keyrot/keyrot-config.cmake lib/cmake/keyrot/keyrot-config-version.cmake \
+    share/doc/keyrot/copyright share/doc/keyrot/changelog.gz share/doc/libkeyrot-dev/copyright; do
     [[ -f $prefix/$file ]] && ok "installed $file" || fail "not installed: $file"
 done
 # The installed headers are the public ones, and they include nothing that is not installed.
@@ -33,18 +35,22 @@ done | grep FAIL && failures=$((failures + 1))
 [[ $("$prefix/bin/keyrot" slerp 1,0,0,0 0,0,0,1 -t 0.5 --rep quat --precision 4 | tail -1) == "0.5,0.7071,0,0,0.7071" ]] &&
     ok "the installed keyrot runs" || fail "the installed keyrot: $("$prefix/bin/keyrot" slerp 1,0,0,0 0,0,0,1 -t 0.5 --rep quat 2>&1)"
 
-# 2. The man page: a section per command with every flag its help lists, the formats, the examples.
-page=$(MANWIDTH=200 man -l "$prefix/share/man/man1/keyrot.1" 2>"$scratch/man.err")
+# 2. The man page: a section per command with every flag its help lists as
+# a tagged paragraph (.TP) of its own, the formats, the examples.
+manpage=$prefix/share/man/man1/keyrot.1.gz
+page=$(MANWIDTH=200 man -l "$manpage" 2>"$scratch/man.err")
 [[ -s $scratch/man.err ]] && fail "man -l: $(cat "$scratch/man.err")"
-groff -man -Tutf8 -ww -z "$prefix/share/man/man1/keyrot.1" 2>"$scratch/groff.err" && [[ ! -s $scratch/groff.err ]] ||
+zcat "$manpage" | groff -man -Tutf8 -ww -z 2>"$scratch/groff.err" && [[ ! -s $scratch/groff.err ]] ||
     fail "groff warnings: $(head -3 "$scratch/groff.err")"
 for section in NAME SYNOPSIS DESCRIPTION COMMANDS FORMATS EXAMPLES; do
     grep -qx "$section" <<<"$page" || fail "man page: no section $section"
 done
-for command in resample convert slerp compare info; do
+# The tags of the .TP entries, as a reader sees them: "-o, --output TEXT".
+tags=$(zcat "$manpage" | awk '/^\.TP$/ { getline; print }' | sed -e 's/\\f[BIR]//g' -e 's/\\-/-/g')
+for command in resample convert slerp compare info reduce; do
     grep -qx "   $command" <<<"$page" || fail "man page: no section for $command"
     "$build/keyrot" "$command" --help | grep -E '^  -' | awk '{ print $1 }' | tr ',' '\n' | while read -r flag; do
-        grep -q -- "$flag" <<<"$page" || echo "FAIL man page: $command's $flag missing"
+        grep -qE -- "(^|, )$flag( |,|$)" <<<"$tags" || echo "FAIL man page: $command's $flag is no .TP entry"
     done | grep FAIL && failures=$((failures + 1))
     "$build/keyrot" "$command" --help | sed -n 's/^  \(keyrot .*\)/\1/p' | while read -r example; do
         [[ $(grep -cF -- "$example" <<<"$page") -ge 2 ]] || echo "FAIL man page: example '$example' not in $command's section and EXAMPLES"
@@ -53,6 +59,8 @@ done
 grep -qF "$(keyrot_columns=$("$build/keyrot" help formats | grep '^  matrix4'); echo "$keyrot_columns")" <<<"$page" &&
     ok "man page: formats" || fail "man page: the formats are not keyrot help formats'"
 grep -q "keyrot $version" <<<"$page" && ok "man page: version $version" || fail "man page: no version $version"
+[[ $(grep -c . <<<"$tags") -ge 100 ]] && ok "man page: $(grep -c . <<<"$tags") flags as .TP entries" ||
+    fail "man page: only $(grep -c . <<<"$tags") .TP entries"
 
 # 3. A program of one's own against the installed package, without keyrot's flags.
 targets=$prefix/lib/cmake/keyrot/keyrot-targets.cmake
@@ -95,11 +103,23 @@ done
     fail "a static keyrot depends on '$depends'"
 [[ $(field "$dev" Depends) == libfmt-dev* ]] && ok "libkeyrot-dev Depends: $(field "$dev" Depends)" || fail "libkeyrot-dev Depends: $(field "$dev" Depends)"
 contents() { dpkg-deb -c "$1" | awk '{ print $6 }'; }
-for file in ./usr/bin/keyrot ./usr/share/man/man1/keyrot.1 ./usr/share/bash-completion/completions/keyrot; do
+for file in ./usr/bin/keyrot ./usr/share/man/man1/keyrot.1.gz ./usr/share/bash-completion/completions/keyrot \
+    ./usr/share/doc/keyrot/copyright ./usr/share/doc/keyrot/changelog.gz; do
     contents "$tool" | grep -qx -- "$file" || fail "keyrot lacks $file"
 done
-for file in ./usr/include/keyrot/interpolate.hpp ./usr/lib/libkeyrot_core.a ./usr/lib/cmake/keyrot/keyrot-config.cmake; do
+for file in ./usr/include/keyrot/interpolate.hpp ./usr/lib/libkeyrot_core.a ./usr/lib/cmake/keyrot/keyrot-config.cmake \
+    ./usr/share/doc/libkeyrot-dev/copyright ./usr/share/doc/libkeyrot-dev/changelog.gz; do
     contents "$dev" | grep -qx -- "$file" || fail "libkeyrot-dev lacks $file"
+done
+
+# What a Debian maintainer runs first: no lintian error or warning (the
+# static binary's error overridden, with the reason, by the package).
+for deb in "$tool" "$dev"; do
+    if lintian --fail-on error,warning "$deb" >"$scratch/lintian.log" 2>&1; then
+        ok "lintian $(basename "$deb"): no errors or warnings"
+    else
+        fail "lintian $(basename "$deb"): $(grep -E '^[EW]:' "$scratch/lintian.log" | head -5)"
+    fi
 done
 
 # Installed into a scratch root by dpkg itself (no network, no system change).
@@ -111,7 +131,7 @@ if dpkg --root="$root" --force-not-root --force-bad-path --force-script-chrootle
         ok "dpkg installs keyrot into a scratch root" || fail "dpkg status: $(dpkg --root="$root" -s keyrot 2>&1)"
     "$root/usr/bin/keyrot" resample "$source_dir/data/homework.json" --fps 4 --rep quat >/dev/null &&
         ok "the packaged keyrot resamples" || fail "the packaged keyrot does not run"
-    MANWIDTH=80 man -l "$root/usr/share/man/man1/keyrot.1" | grep -q "keyframe rotation interpolator" &&
+    MANWIDTH=80 man -l "$root/usr/share/man/man1/keyrot.1.gz" | grep -q "keyframe rotation interpolator" &&
         ok "the packaged man page reads" || fail "the packaged man page"
 else
     fail "dpkg -i into a scratch root: $(tail -3 "$scratch/dpkg.log")"

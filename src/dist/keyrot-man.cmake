@@ -1,7 +1,9 @@
 # Writes keyrot's man page from the program's own help, so that the two are
-# never written twice: a section per command (its --help, which ends with
-# examples), the formats (keyrot help formats), and the examples gathered.
+# never written twice: a section per command (its --help: each flag a .TP
+# entry, the examples set as typed), the formats (keyrot help formats), and
+# the examples gathered.
 #   cmake -DKEYROT=path/to/keyrot -DOUT=keyrot.1 -DVERSION=0.1.0 -P keyrot-man.cmake
+cmake_minimum_required(VERSION 3.25)
 
 # The output of `keyrot ARGS...` in `var`.
 function(keyrot_help var)
@@ -28,6 +30,93 @@ function(verbatim var text)
   set(${var} ".PP\n.nf\n${text}.fi\n" PARENT_SCOPE)
 endfunction()
 
+# The head of an entry of the help ("-o,--output TEXT", "files TEXT ...") as
+# roff: the names in bold (flags) or italics (positionals), the rest plain.
+function(entry_head var head)
+  string(REGEX MATCH "^[^ ]+" names "${head}")
+  string(LENGTH "${names}" length)
+  string(SUBSTRING "${head}" ${length} -1 rest)
+  string(REPLACE "," ";" names "${names}")
+  set(marked "")
+  foreach(name IN LISTS names)
+    roff(name "${name}")
+    if(name MATCHES "^\\\\-")
+      list(APPEND marked "\\fB${name}\\fR")
+    else()
+      list(APPEND marked "\\fI${name}\\fR")
+    endif()
+  endforeach()
+  list(JOIN marked ", " marked)
+  roff(rest "${rest}")
+  set(${var} "${marked}${rest}" PARENT_SCOPE)
+endfunction()
+
+# A --help as man text: the groups of entries (Options:, Input:, ...) as
+# tagged paragraphs, one .TP per flag; "Examples:" set as typed; other
+# lines as paragraphs. Lines are split at "\n" with any ";" kept aside, as
+# CMake's lists would split at it.
+function(help_to_man var help)
+  string(ASCII 1 semicolon)
+  string(REPLACE ";" "${semicolon}" help "${help}")
+  string(REPLACE "\n" ";" lines "${help}")
+  set(page "")
+  set(mode text)       # text, entries (a group of flags), examples
+  set(head "")         # the entry being read: its head and description
+  set(body "")
+  set(examples "")
+  set(break OFF)       # a blank line since the last text
+  foreach(line IN LISTS lines)
+    string(REPLACE "${semicolon}" ";" line "${line}")
+    if(mode STREQUAL "entries" AND line MATCHES "^                              +(.*)$")
+      string(APPEND body " ${CMAKE_MATCH_1}")        # a description, continued or on its own line
+      continue()
+    endif()
+    if(NOT head STREQUAL "")
+      entry_head(tag "${head}")
+      string(STRIP "${body}" body)
+      roff(body "${body}")
+      string(APPEND page ".TP\n${tag}\n${body}\n")
+      set(head "")
+      set(body "")
+    endif()
+    if(line STREQUAL "")
+      set(break ON)
+    elseif(line STREQUAL "Examples:")
+      set(mode examples)
+    elseif(mode STREQUAL "examples")
+      string(APPEND examples "${line}\n")
+    elseif(line MATCHES "^[A-Z][A-Za-z ]*:$")
+      set(mode entries)
+      roff(line "${line}")
+      string(APPEND page ".PP\n\\fB${line}\\fR\n")
+    elseif(mode STREQUAL "entries" AND line MATCHES "^  ([^ ].*[^ ])   +([^ ].*)$")
+      set(head "${CMAKE_MATCH_1}")
+      set(body "${CMAKE_MATCH_2}")
+    elseif(mode STREQUAL "entries" AND line MATCHES "^  ([^ ].*)$")
+      set(head "${CMAKE_MATCH_1}")
+    else()
+      if(break OR NOT mode STREQUAL "text" OR line MATCHES "^Usage: ")
+        string(APPEND page ".PP\n")
+      endif()
+      set(mode text)
+      roff(line "${line}")
+      string(APPEND page "${line}\n")
+    endif()
+    if(NOT line STREQUAL "")
+      set(break OFF)
+    endif()
+  endforeach()
+  if(NOT head STREQUAL "")
+    message(FATAL_ERROR "the help ends inside an entry: ${head}")
+  endif()
+  if(NOT examples STREQUAL "")
+    verbatim(shown "${examples}")
+    string(APPEND page ".PP\n\\fBExamples:\\fR\n${shown}")
+  endif()
+  set(${var} "${page}" PARENT_SCOPE)
+  set(${var}_examples "${examples}" PARENT_SCOPE)
+endfunction()
+
 keyrot_help(main --help)
 string(REGEX MATCH "Subcommands:\n([^\n]+\n)+" listed "${main}")
 string(REGEX MATCHALL "\n  [a-z]+" commands "${listed}")
@@ -44,18 +133,16 @@ foreach(command IN LISTS commands)
   string(APPEND page ".B keyrot ${command}\n[\\fIOPTIONS\\fR]\n.br\n")
 endforeach()
 string(APPEND page ".B keyrot help\n[\\fICOMMAND\\fR | \\fBformats\\fR]\n")
-verbatim(text "${main}")
+help_to_man(text "${main}")
 string(APPEND page ".SH DESCRIPTION\n${text}")
 
 string(APPEND page ".SH COMMANDS\n")
 set(examples "")
 foreach(command IN LISTS commands)
   keyrot_help(help ${command} --help)
-  verbatim(text "${help}")
+  help_to_man(text "${help}")
   string(APPEND page ".SS ${command}\n${text}")
-  string(REGEX MATCH "Examples:\n.*" shown "${help}")
-  string(REGEX REPLACE "^Examples:\n" "" shown "${shown}")
-  string(APPEND examples "${shown}")
+  string(APPEND examples "${text_examples}")
 endforeach()
 
 keyrot_help(formats help formats)
