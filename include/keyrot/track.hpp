@@ -10,6 +10,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -29,6 +30,10 @@ struct location {
 
 /// "walk.csv:14", "walk.json: tracks.hip.keys[3]", or the source alone.
 std::string where(const std::string& source, const location& at);
+/// "walk.csv:14": line 14 of walk.csv (counted from 1; 0 is the source alone).
+std::string where(std::string_view source, std::size_t line);
+/// "walk.json: tracks.hip.keys[3]": a key path of a JSON or glTF source.
+std::string where(std::string_view source, std::string_view path);
 
 /// Morph target weights (glTF's `weights` channel), one per target of the
 /// node's mesh; empty where a key carries none.

@@ -164,9 +164,13 @@ track track_builder::finish(warnings& warn) && {
 }
 
 std::string where(const std::string& source, const location& at) {
-    if (!at.path.empty()) return fmt::format("{}: {}", source, at.path);
-    if (at.line) return fmt::format("{}:{}", source, at.line);
-    return source;
+    return at.path.empty() ? where(source, at.line) : where(source, at.path);
 }
+
+std::string where(std::string_view source, std::size_t line) {
+    return line ? fmt::format("{}:{}", source, line) : std::string(source);
+}
+
+std::string where(std::string_view source, std::string_view path) { return fmt::format("{}: {}", source, path); }
 
 }  // namespace keyrot

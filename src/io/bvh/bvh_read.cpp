@@ -92,7 +92,7 @@ public:
 
 private:
     [[noreturn]] void fail(const std::string& what) const {
-        throw input_error(fmt::format("{}:{}", source_, lines_.number()), what);
+        throw input_error(where(source_, lines_.number()), what);
     }
 
     /// A ROOT, JOINT or End Site, the child of the open block; the next '{' opens it.
@@ -133,7 +133,7 @@ private:
             while (end < w.size() && w[end] != "{") ++end;
             if (end == i + 1) fail(fmt::format("{} without a name: expected a joint name", k));
             const std::string name(w[i + 1].data(), static_cast<std::size_t>(w[end - 1].end() - w[i + 1].begin()));
-            check_track_name(name, fmt::format("{}:{}", source_, lines_.number()));
+            check_track_name(name, where(source_, lines_.number()));
             add_node(name);
             // Two joints of one name are two tracks: the second is "<name>.2".
             const std::string track = distinct_track_name(name, names_);
@@ -270,7 +270,7 @@ public:
             };
             blank();
             if (p == end) continue;
-            const auto where = [&] { return fmt::format("{}:{}", source_, lines_.number()); };
+            const auto where = [&] { return keyrot::where(source_, lines_.number()); };
             if (read_ == header_.frames)
                 throw input_error(where(), fmt::format("a frame line after the {} that 'Frames:' states: expected {}",
                                                        header_.frames, header_.frames));
@@ -301,7 +301,7 @@ public:
         at_end_ = true;
         if (read_ != header_.frames)
             throw input_error(
-                fmt::format("{}:{}", source_, lines_.number()),
+                where(source_, lines_.number()),
                 fmt::format("'Frames: {}', but {} frame lines: expected as many", header_.frames, read_));
         if (read_ == 0) throw input_error(source_, "'Frames: 0': expected at least one frame");
         return false;

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "keyrot/error.hpp"
+#include "keyrot/track.hpp"
 
 namespace keyrot {
 
@@ -56,7 +57,7 @@ bool line_reader::read(std::string_view& line) {
         }
         const std::size_t offset = searched - begin_;
         if (end_ - begin_ > max_line_)
-            throw input_error(fmt::format("{}:{}", source_, number_ + 1),
+            throw input_error(where(source_, number_ + 1),
                               fmt::format("line longer than {} bytes: expected the lines of a keyframe table "
                                           "(--max-bytes N raises the limit)",
                                           max_line_));

@@ -62,7 +62,7 @@ public:
             }
         }
         if (quoted)
-            throw input_error(fmt::format("{}:{}", source, line_no), "unterminated quoted cell: expected a closing '\"'");
+            throw input_error(where(source, line_no), "unterminated quoted cell: expected a closing '\"'");
         for (const std::string& cell : quoted_) cells_.emplace_back(cell);
         return cells_;
     }
@@ -212,7 +212,7 @@ bool skipped(std::string_view line, const std::string& source, std::size_t numbe
     const std::string_view content = trim(line);
     if (content.empty() || content.front() == '#') return true;
     if (!is_valid_utf8(line))
-        throw input_error(fmt::format("{}:{}", source, number),
+        throw input_error(where(source, number),
                           number == 1 && looks_like_utf16(line) ? utf16_message : "invalid UTF-8: expected text");
     return false;
 }
@@ -230,7 +230,7 @@ public:
         const std::size_t line_no = place.line;
         if (read_plain(line, line_no, track, k)) return true;
         if (skipped(line, source_, line_no)) return false;
-        const auto where = [&] { return fmt::format("{}:{}", source_, line_no); };
+        const auto where = [&] { return keyrot::where(source_, line_no); };
         const auto& cells = splitter_.split(line, source_, line_no);
         if (cells.size() != cols_.count)
             throw input_error(where(), fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
@@ -361,11 +361,11 @@ public:
                 lines_.put_back();  // the first key, read with the header
                 header_line_ = comment_line;
                 rows_.emplace(parse_header(splitter.split(comment, source, comment_line), ',',
-                                           fmt::format("{}:{}", source, comment_line), warn),
+                                           where(source, comment_line), warn),
                               source);
                 return;
             }
-            const std::string where = fmt::format("{}:{}", source, lines_.number());
+            const std::string where = keyrot::where(source, lines_.number());
             if (looks_like_utf16(line)) throw input_error(where, utf16_message);  // (no byte-order mark)
             if (const char c = trim(line).front(); c == '{' || c == '[')
                 throw input_error(where, fmt::format("expected a CSV header, got what looks like JSON ('{}'): "
@@ -401,7 +401,7 @@ public:
 private:
     /// The settings of a "# keyrot {...}" line, over the flags'.
     void read_settings(std::string_view object, const read_options& opts, std::size_t line_no, warnings& warn) {
-        const std::string where = fmt::format("{}:{}", opts.source, line_no);
+        const std::string where = keyrot::where(opts.source, line_no);
         flat_json settings;
         if (!settings.parse(object) || !settings.root().is_object())
             throw input_error(where, fmt::format("expected a JSON object of settings after '{}'", trim(csv_settings_comment)));

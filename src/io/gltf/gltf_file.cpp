@@ -69,7 +69,7 @@ void check_header(const gltf_json& json, const std::string& source) {
     if (asset == json.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
         throw input_error(source, "asset.version: expected the glTF version, \"2.0\"");
     const std::string version = (*asset)["version"];
-    const std::string min_version = string_member(*asset, "minVersion", version, source + ": asset");
+    const std::string min_version = string_member(*asset, "minVersion", version, where(source, "asset"));
     if (!version.starts_with("2.") || !min_version.starts_with("2."))
         throw input_error(source, fmt::format("asset.version: glTF {}: expected 2.0", excerpt(version)));
     if (const auto required = json.find("extensionsRequired"); required != json.end() && required->is_array())
@@ -346,7 +346,7 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
 
 std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const std::string& path,
                                   const accessor_kind& kind) {
-    const std::string at = fmt::format("{}: {}", file.source, path);
+    const std::string at = where(file.source, path);
     const std::size_t a = index_into(file, index, "accessors", at);
     const gltf_json& acc = top_array(file, "accessors")[a];
     const std::string here = fmt::format("{}: accessor {}", at, a);

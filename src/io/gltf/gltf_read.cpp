@@ -48,7 +48,7 @@ channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std:
                            std::size_t width) {
     const bool rotation = kind == channel_kind::rotation, weights = kind == channel_kind::weights;
     channel_curve c{path, {}, rotation ? 4 : weights ? width : 3, method::slerp, {}};
-    const std::string at = fmt::format("{}: {}", file.source, path);
+    const std::string at = where(file.source, path);
     if (!sampler.is_object() || !sampler.contains("input") || !sampler.contains("output"))
         throw input_error(at, "expected an object with input and output");
     const std::string interpolation = string_member(sampler, "interpolation", "LINEAR", at);
@@ -213,7 +213,7 @@ std::size_t morph_targets(const gltf_file& file, std::size_t node, const std::st
 std::vector<node_track> channels_of(const gltf_file& file, std::size_t a, warnings& warn) {
     const gltf_json& anim = top_array(file, "animations")[a];
     const std::string path = fmt::format("animations[{}]", a);
-    const std::string at = fmt::format("{}: {}", file.source, path);
+    const std::string at = where(file.source, path);
     if (!anim.is_object() || !anim.contains("channels") || !anim["channels"].is_array() || !anim.contains("samplers") ||
         !anim["samplers"].is_array())
         throw input_error(at, "expected an object with channels and samplers");

@@ -77,7 +77,7 @@ void check_depth(std::string_view text, std::string_view source, std::size_t fir
             in_string = true;
         } else if (c == '[' || c == '{') {
             if (++depth > max_depth)
-                throw input_error(fmt::format("{}:{}", source, first_line + line_of(text, i) - 1),
+                throw input_error(where(source, first_line + line_of(text, i) - 1),
                                   fmt::format("JSON nested deeper than {} levels: expected a keyframe document", max_depth));
         } else if (c == ']' || c == '}') {
             --depth;
@@ -100,7 +100,7 @@ public:
                 if (!names.insert(current).second) {
                     std::string path;
                     for (std::size_t i = 0; i + 1 < objects_.size(); ++i) path = join_path(path, objects_[i].second);
-                    throw input_error(fmt::format("{}: {}", source_, path.empty() ? "document" : path),
+                    throw input_error(where(source_, path.empty() ? "document" : path),
                                       fmt::format("'{}' appears twice: expected each name once in an object",
                                                   current.substr(0, 40)));
                 }
@@ -121,7 +121,7 @@ private:
 std::string place_of(std::string_view text, std::size_t byte, std::string_view source, std::size_t first_line) {
     byte = std::min(byte, text.size());
     const std::size_t line_start = byte == 0 ? 0 : text.rfind('\n', byte - 1) + 1;  // (npos + 1 == 0)
-    return fmt::format("{}:{}:{}", source, first_line + line_of(text, byte) - 1, byte - line_start + 1);
+    return fmt::format("{}:{}", where(source, first_line + line_of(text, byte) - 1), byte - line_start + 1);
 }
 
 }  // namespace
@@ -143,7 +143,7 @@ json parse_json_text(std::string_view text, std::string_view source, std::size_t
         const auto quote = what.find('\'');
         const std::string token = quote == std::string::npos ? "" : what.substr(quote + 1, what.size() - quote - 2);
         const std::size_t at = token.empty() ? 0 : text.find(token);
-        throw input_error(fmt::format("{}:{}", source, first_line + line_of(text, at == std::string_view::npos ? 0 : at) - 1),
+        throw input_error(where(source, first_line + line_of(text, at == std::string_view::npos ? 0 : at) - 1),
                           fmt::format("number '{}' is out of range: expected a finite number", token.substr(0, 40)));
     }
 }
@@ -158,7 +158,7 @@ using detail::settings_object;
 template <class Value>
 void read_track(Value j, std::string name, const std::string& path, key_settings settings, quat_order order,
                 const read_options& opts, raw_key_sink& sink, warnings& warn) {
-    const std::string where = fmt::format("{}: {}", opts.source, path.empty() ? "document" : path);
+    const std::string where = keyrot::where(opts.source, path.empty() ? "document" : path);
     apply_fields(j, settings, order, where, path.empty() ? settings_object::document : settings_object::track, opts, warn);
     std::optional<Value> keys = j;
     std::string field;
@@ -270,7 +270,7 @@ public:
 private:
     template <class Value>
     void read(Value j, std::size_t line_no, std::string& track, raw_key& k) {
-        const auto where = [&] { return fmt::format("{}:{}", source_, line_no); };
+        const auto where = [&] { return keyrot::where(source_, line_no); };
         const auto track_field = j.is_object() ? j.member("track") : std::nullopt;
         if (!named_) named_ = track_field.has_value();
         if (track_field.has_value() != *named_) {
@@ -315,7 +315,7 @@ public:
             lines_.put_back();  // a key, read with the header test
             return;
         }
-        const std::string where = fmt::format("{}:{}", opts.source, lines_.number());
+        const std::string where = keyrot::where(opts.source, lines_.number());
         quat_order order = opts.order;
         if (parsed) apply_fields(fast.root(), settings_, order, where, settings_object::header, opts, warn);
         else apply_fields(dom_value(parse_json_text(line, opts.source, lines_.number())), settings_, order, where,

@@ -329,7 +329,7 @@ private:
             if (o.keys) return void(text_.decline());  // it would change keys already read
             o.fields += fmt::format("{}\"{}\": {}", o.fields.size() > 1 ? ", " : "", *name, *value);
         } else if (!detail::descriptive_field(*name)) {
-            unknown_field(*name, fmt::format("{}: {}", opts_.source, o.path.empty() ? "document" : o.path), o.settings,
+            unknown_field(*name, where(opts_.source, o.path.empty() ? "document" : o.path), o.settings,
                           warn_);
         }
     }
