@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "helpers.hpp"
+#include "reading.hpp"
 
 using namespace keyrot;
 
@@ -37,7 +38,7 @@ std::string direct(format f, const table_info& info, const write_options& w, con
     std::string out;
     std::ostringstream err;
     warnings warn(err, "in");
-    const auto writer = make_writer(f, out, info, w, warn);
+    const auto writer = test::make_writer(f, out, info, w, warn);
     for (std::size_t t = 0; t < tracks.size(); ++t) {
         writer->begin_track("track " + std::to_string(t), channels{tracks[t].front().translation.has_value(), tracks[t].front().scale.has_value()});
         for (const sample& s : tracks[t]) writer->row(s);

@@ -1,6 +1,7 @@
 #pragma once
 // What the reader and writer tests share: an input read as the commands
 // read it (io/document.hpp), its first error, a table written.
+#include <memory>
 #include <sstream>
 #include <cstdint>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "io/common/interface.hpp"
 #include "io/common/table_writer.hpp"
+#include "io/csv/csv.hpp"
 #include "io/document.hpp"
 #include "io/json/json.hpp"
 #include "io/open.hpp"
@@ -105,6 +107,13 @@ inline std::string error_of(std::string_view text, format f) {
         return e.what();
     }
     return "";
+}
+
+/// The writer of a text format (as open_table makes it, without the threads).
+inline std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,
+                                                 const write_options& w, warnings& warn) {
+    if (f == format::csv) return make_csv_writer(out, info, w, warn);
+    return make_json_writer(out, info, w, warn, f == format::ndjson);
 }
 
 inline std::string write(format f, const table_info& info, const write_options& w, const std::vector<sample>& rows,

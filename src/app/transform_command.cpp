@@ -3,14 +3,12 @@
 // in one into a file; interleaved tracks, and JSON documents the streaming
 // reader declines, are read whole; BVH to BVH goes frame by frame.
 #include <fmt/format.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <exception>
 #include <filesystem>
-#include <map>
 #include <mutex>
 #include <new>
 #include <ostream>
@@ -20,6 +18,7 @@
 #include <utility>
 
 #include "app/commands.hpp"
+#include "app/output_names.hpp"
 #include "app/plan.hpp"
 #include "app/row_sources.hpp"
 #include "ground/held_warnings.hpp"
@@ -43,7 +42,31 @@ struct transform_plan {
     format in = format::csv, out = format::csv;
     std::optional<std::string> target;  // the output file; none for standard output
     durable_batch* batch = nullptr;     // --fsync in a batch: what puts the output file in place
+    // A glTF input as its first pass loaded it, for the passes after and a
+    // glTF output that rewrites it: the file is read once (loaded_gltf).
+    mutable std::shared_ptr<gltf_source> gltf;
 };
+
+/// The plan's glTF input, loaded on first use.
+std::shared_ptr<gltf_source> loaded_gltf(const transform_plan& p, const input_source& src, warnings& warn) {
+    if (!p.gltf) p.gltf = read_gltf_source(*src.open(), p.in, p.reading, warn);
+    return p.gltf;
+}
+
+/// The keys of one pass over the input, and the stream they are read from
+/// (none for glTF, which is read from memory after its first pass).
+struct pass_keys {
+    std::unique_ptr<std::istream> stream;
+    std::unique_ptr<key_reader> reader;
+};
+
+pass_keys open_keys(const transform_plan& p, const input_source& src, warnings& warn,
+                    std::function<bool()> parse_ahead = nullptr) {
+    if (is_gltf(p.in)) return {nullptr, make_gltf_reader(loaded_gltf(p, src, warn), p.reading, warn)};
+    pass_keys keys{src.open(), nullptr};
+    keys.reader = make_key_reader(*keys.stream, p.in, p.reading, warn, std::move(parse_ahead));
+    return keys;
+}
 
 /// How the plan's output is written, for an input of facts `d`: a glTF
 /// output of a glTF input rewrites that file.
@@ -51,7 +74,7 @@ write_options writing_for(const transform_plan& p, const input_source& src, cons
     write_options w = writing(p.flags, d.tracks.front().euler);
     w.commit.batch = p.batch;
     w.commit.follow_links = !p.flags.output_dir;
-    if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = read_gltf_source(*src.open(), p.in, p.reading, warn);
+    if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = loaded_gltf(p, src, warn);
     // A glTF output of a BVH input makes its hierarchy the nodes.
     if (is_gltf(p.out) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);
     return w;
@@ -62,8 +85,8 @@ write_options writing_for(const transform_plan& p, const input_source& src, cons
 /// one began, or when the reader declines the document (a JSON document
 /// the streaming reader does not take): such input is then read whole.
 document_facts scan(const transform_plan& p, const input_source& src, warnings& warn, bool& read_whole) {
-    const auto stream = src.open();
-    const auto reader = make_key_reader(*stream, p.in, p.reading, warn, [] { return true; });
+    const pass_keys keys = open_keys(p, src, warn, [] { return true; });
+    key_reader* const reader = keys.reader.get();
     document_facts d;
     std::set<std::string> seen;
     std::string name;
@@ -107,13 +130,13 @@ bool scan_json(const transform_plan& p, const input_source& src, document_facts&
 /// comes back after another one began, or the reader declines the document.
 std::optional<document_facts> stream_rows(const transform_plan& p, const input_source& src,
                                           const document_facts* known, table_output& rows, warnings& warn) {
-    const auto stream = src.open();
     std::size_t keys = 0, rows_put = 0;
     const auto row = [&](const sample& s) { ++rows_put, rows.row(s); };
     // Parsing ahead on a thread of its own pays when keys outnumber rows
     // (motion capture at 120 Hz resampled to 24 fps, say). Otherwise the
     // formatting threads keep the cores busy, and it would only cost.
-    const auto reader = make_key_reader(*stream, p.in, p.reading, warn, [&] { return rows_put < keys; });
+    const pass_keys input = open_keys(p, src, warn, [&] { return rows_put < keys; });
+    key_reader* const reader = input.reader.get();
     document_facts seen;
     std::set<std::string> names;
     std::string name;
@@ -173,8 +196,8 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
         warnings output_warn(output_held, src.source());
         document_facts guess;
         {
-            const auto stream = src.open();
-            const auto reader = make_key_reader(*stream, p.in, p.reading, attempt);
+            const pass_keys keys = open_keys(p, src, attempt);
+            key_reader* const reader = keys.reader.get();
             std::string name;
             raw_key raw;
             if (!reader->next(name, raw)) return false;
@@ -265,52 +288,10 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
     p.rows->report(out, err);
 }
 
-/// Where --output-dir puts the output of input `name`: its file name, with
-/// the output format's extension.
-std::filesystem::path in_output_dir(const std::string& dir, const std::string& name, format out) {
-    std::filesystem::path file = std::filesystem::path(name).filename();
-    file.replace_extension(to_string(out));
-    return std::filesystem::path(dir) / file;
-}
-
-/// Before anything is written: no two inputs are written to one name, and
-/// no output replaces an input. An input's output format is known from the
-/// flags or its extension; where it is not (it would be sniffed), inputs
-/// whose names differ only in extension are taken to collide.
-void check_output_names(const options& o, const std::vector<std::string>& inputs) {
-    const auto file_id = [](const std::string& path) -> std::optional<std::pair<dev_t, ino_t>> {
-        struct stat st {};
-        if (::stat(path.c_str(), &st) != 0) return std::nullopt;
-        return std::pair(st.st_dev, st.st_ino);
-    };
-    std::map<std::pair<dev_t, ino_t>, std::string> input_files;
-    for (const std::string& name : inputs)
-        if (const auto id = is_standard_stream(name) ? std::nullopt : file_id(name)) input_files.emplace(*id, name);
-    // By the output's name without its extension: the inputs, with their output's extension ("*": not known).
-    std::map<std::string, std::vector<std::pair<std::string, std::string>>> by_stem;
-    for (const std::string& name : inputs) {
-        const std::optional<format> out = o.to ? o.to : o.from ? o.from : format_of_path(name);
-        const std::filesystem::path target = in_output_dir(*o.output_dir, name, out.value_or(format::csv));
-        const std::string extension = out ? std::string(to_string(*out)) : "*";
-        auto& same_stem = by_stem[std::filesystem::path(target).replace_extension().string()];
-        for (const auto& [other, other_extension] : same_stem)
-            if (other_extension == extension || extension == "*" || other_extension == "*")
-                throw usage_error(fmt::format("--output-dir {}: '{}' and '{}' would both be written to '{}': expected "
-                                              "inputs with distinct names",
-                                              *o.output_dir, other, name,
-                                              std::filesystem::path(target).replace_extension(extension).string()));
-        same_stem.emplace_back(name, extension);
-        const auto id = out ? file_id(target.string()) : std::nullopt;
-        if (const auto input = id ? input_files.find(*id) : input_files.end(); input != input_files.end())
-            throw usage_error(fmt::format("--output-dir {}: the output of '{}' would replace the input '{}'",
-                                          *o.output_dir, name, input->second));
-    }
-}
-
 /// What the options make of input `name`: how it is read, its row source,
 /// the formats, where its output goes.
 transform_plan plan_for(const options& o, const std::string& name, const input_source& src, durable_batch* batch) {
-    transform_plan p{o, reading(o, src.source()), nullptr, src.detect(o.from), format::csv, std::nullopt, batch};
+    transform_plan p{o, reading(o, src.source()), nullptr, src.detect(o.from), format::csv, std::nullopt, batch, nullptr};
     p.out = o.to.value_or(p.in);
     if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
     else if ((p.target = output_path(o)) && !o.to) p.out = format_of_path(*p.target).value_or(p.in);

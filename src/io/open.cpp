@@ -22,13 +22,14 @@ std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const re
     return reader;
 }
 
+namespace {
+
+/// The writer of a text format, into `out`.
 std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,
                                           const write_options& opts, warnings& warn) {
     if (f == format::csv) return make_csv_writer(out, info, opts, warn);
     return make_json_writer(out, info, opts, warn, f == format::ndjson);
 }
-
-namespace {
 
 /// A writer's rows through the row pipeline into chunked output.
 class piped_table final : public table_output {

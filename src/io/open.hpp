@@ -22,11 +22,6 @@ namespace keyrot {
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn,
                                             std::function<bool()> parse_ahead = nullptr);
 
-/// The writer of format `f`, into `out` (open_table's, and the tests').
-/// Euler output warns once about gimbal lock through `warn`.
-std::unique_ptr<table_writer> make_writer(format f, std::string& out, const table_info& info,
-                                          const write_options& opts, warnings& warn);
-
 /// A table in format `f` into `path` (none: `out`), or a glTF file
 /// (make_gltf_table). Throws input_error for BVH, which only bvh_output
 /// writes, from BVH input. Euler output warns once about gimbal lock

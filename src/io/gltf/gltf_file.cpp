@@ -125,7 +125,7 @@ std::string_view buffer_bytes(gltf_file& file, std::size_t i) {
     if (file.buffers.size() <= i) file.buffers.resize(i + 1);
     if (file.buffers[i]) return *file.buffers[i];
     const gltf_json& b = top_array(file, "buffers")[i];
-    const std::string at = fmt::format("{}: buffers[{}]", file.source, i);
+    const std::string at = where(file.source, fmt::format("buffers[{}]", i));
     if (!b.is_object() || !b.contains("byteLength") || !b["byteLength"].is_number_unsigned())
         throw input_error(at, "expected an object with a byteLength");
     const std::size_t length = b["byteLength"];
@@ -228,7 +228,7 @@ std::size_t components_of(std::string_view type) {
 std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf_json& view, const std::string& at) {
     const std::size_t v = index_into(file, view, "bufferViews", at);
     const gltf_json& bv = top_array(file, "bufferViews")[v];
-    const std::string here = fmt::format("{}: bufferViews[{}]", file.source, v);
+    const std::string here = where(file.source, fmt::format("bufferViews[{}]", v));
     if (!bv.is_object() || !bv.contains("buffer")) throw input_error(here, "expected an object with a buffer");
     const std::size_t b = index_into(file, bv["buffer"], "buffers", here);
     const std::string_view bytes = buffer_bytes(file, b);
@@ -349,7 +349,7 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
     const std::string at = where(file.source, path);
     const std::size_t a = index_into(file, index, "accessors", at);
     const gltf_json& acc = top_array(file, "accessors")[a];
-    const std::string here = fmt::format("{}: accessor {}", at, a);
+    const std::string here = where(at, fmt::format("accessor {}", a));
     if (!acc.is_object()) throw input_error(here, "expected an object");
     const std::string type = string_member(acc, "type", "", here);
     if (type != kind.type) throw input_error(here, fmt::format("type '{}': expected {}", excerpt(type), kind.type));

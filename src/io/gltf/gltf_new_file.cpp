@@ -50,7 +50,7 @@ public:
         // (the track's name in a message only when there is one to give)
         const auto where = [&] {
             const std::string& name = tracks_.back().name;
-            return name.empty() ? b_.source : fmt::format("{}: track '{}'", b_.source, name);
+            return name.empty() ? b_.source : keyrot::where(b_.source, fmt::format("track '{}'", name));
         };
         const float time = single_at(s.time, where, "time");
         if (rotation_.count && !(time > rotation_.last))

@@ -138,7 +138,7 @@ quat rest_rotation(const gltf_file& file, std::size_t node) {
     const gltf_json& n = top_array(file, "nodes")[node];
     if (!n.is_object() || !n.contains("rotation")) return {};
     const gltf_json& r = n["rotation"];
-    const std::string at = fmt::format("{}: nodes[{}].rotation", file.source, node);
+    const std::string at = where(file.source, fmt::format("nodes[{}].rotation", node));
     if (!r.is_array() || r.size() != 4 ||
         !std::all_of(r.begin(), r.end(), [](const gltf_json& v) { return v.is_number(); }))
         throw input_error(at, "expected four numbers (x, y, z, w)");
@@ -189,7 +189,7 @@ struct node_track {
 /// weight for each); an input_error at `at` where it has none.
 std::size_t morph_targets(const gltf_file& file, std::size_t node, const std::string& at) {
     const gltf_json& n = top_array(file, "nodes")[node];
-    const std::string here = fmt::format("{}: nodes[{}]", file.source, node);
+    const std::string here = where(file.source, fmt::format("nodes[{}]", node));
     if (!n.is_object() || !n.contains("mesh"))
         throw input_error(at, fmt::format("a weights channel of node {}, which has no mesh: expected a node whose mesh "
                                           "has morph targets",
@@ -267,7 +267,7 @@ std::vector<node_track> tracks_of(const gltf_file& file, const read_options& ro,
         for (node_track& n : channels_of(file, a, warn)) {
             n.name = node_name(file, n.origin.node);
             if (animations.size() > 1) n.name = animation_name(file, a) + "/" + n.name;
-            check_track_name(n.name, fmt::format("{}: nodes[{}].name", ro.source, n.origin.node));
+            check_track_name(n.name, where(ro.source, fmt::format("nodes[{}].name", n.origin.node)));
             n.name = distinct_track_name(n.name, names);  // two nodes of one name: "<name>.2"
             tracks.push_back(std::move(n));
         }
@@ -288,8 +288,8 @@ gltf_file load(std::istream& in, format f, const read_options& ro) {
 /// when its track's turn comes, so that one track's keys are held at a time.
 class gltf_keys final : public key_reader {
 public:
-    gltf_keys(std::istream& in, format f, const read_options& ro, warnings& warn)
-        : file_(load(in, f, ro)), tracks_(tracks_of(file_, ro, warn)), flags_(ro.settings) {}
+    gltf_keys(std::shared_ptr<gltf_source> loaded, const read_options& ro, warnings& warn)
+        : loaded_(std::move(loaded)), file_(loaded_->file), tracks_(tracks_of(file_, ro, warn)), flags_(ro.settings) {}
 
     bool next(std::string& track, raw_key& k) override {
         while (key_ == times_.size()) {
@@ -412,7 +412,8 @@ private:
         return vec3{v[0], v[1], v[2]};
     }
 
-    gltf_file file_;
+    std::shared_ptr<gltf_source> loaded_;
+    gltf_file& file_;  // loaded_'s
     std::vector<node_track> tracks_;
     key_settings flags_, settings_;
     std::size_t next_track_ = 0, key_ = 0, node_ = 0;
@@ -425,7 +426,12 @@ private:
 }  // namespace
 
 std::unique_ptr<key_reader> make_gltf_reader(std::istream& in, format f, const read_options& ro, warnings& warn) {
-    return std::make_unique<gltf_keys>(in, f, ro, warn);
+    return std::make_unique<gltf_keys>(std::make_shared<gltf_source>(gltf_source{load(in, f, ro), {}}), ro, warn);
+}
+
+std::unique_ptr<key_reader> make_gltf_reader(std::shared_ptr<gltf_source> loaded, const read_options& ro,
+                                             warnings& warn) {
+    return std::make_unique<gltf_keys>(std::move(loaded), ro, warn);
 }
 
 std::shared_ptr<gltf_source> read_gltf_source(std::istream& in, format f, const read_options& ro, warnings& warn) {

@@ -39,7 +39,12 @@ struct gltf_source {
 std::unique_ptr<key_reader> make_gltf_reader(std::istream& in, format f, const read_options& ro, warnings& warn);
 
 /// The file, and the origin of each track make_gltf_reader gives, for a
-/// glTF output that rewrites it.
+/// glTF output that rewrites it, and for the readers of later passes.
 std::shared_ptr<gltf_source> read_gltf_source(std::istream& in, format f, const read_options& ro, warnings& warn);
+/// The keys of a file read_gltf_source loaded, as make_gltf_reader gives
+/// them: each pass over a glTF input reads it from memory, and the file
+/// once. The reader shares `loaded` (its buffers are decoded on first use).
+std::unique_ptr<key_reader> make_gltf_reader(std::shared_ptr<gltf_source> loaded, const read_options& ro,
+                                             warnings& warn);
 
 }  // namespace keyrot

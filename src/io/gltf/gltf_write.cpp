@@ -129,7 +129,7 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_trac
     const std::vector<double>& times = vectors ? vectors->times : t.times;
     // Channels on the rotation's times share its input.
     const std::vector<double>* input_times = vectors && vectors->times == t.times ? &t.times : &times;
-    const std::string where = t.name.empty() ? b.source : fmt::format("{}: track '{}'", b.source, t.name);
+    const std::string where = t.name.empty() ? b.source : keyrot::where(b.source, fmt::format("track '{}'", t.name));
     auto input = inputs.find(input_times);
     if (input == inputs.end()) input = inputs.emplace(input_times, b.accessor(time_values(times, where), 1, true)).first;
     std::vector<float> values;
@@ -197,7 +197,7 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
                 anim["channels"][c]["sampler"];  // (the reader checked each channel is an object)
             if (!sampler.is_number_unsigned() || sampler.get<std::size_t>() >= keep.size())
                 throw input_error(
-                    fmt::format("{}: animations[{}].channels[{}].sampler", file.source, a, c),
+                    where(file.source, fmt::format("animations[{}].channels[{}].sampler", a, c)),
                     fmt::format("{}: expected an index into animations[{}].samplers", excerpt(sampler.dump()), a));
             keep[sampler.get<std::size_t>()] = true;
             ++kept_channels;
@@ -253,7 +253,7 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
     const gltf_json views = json.contains("bufferViews") ? std::move(json["bufferViews"]) : gltf_json::array();
     json.erase("bufferViews");
     for (std::size_t v = 0; v < views.size(); ++v) {
-        const std::string where = fmt::format("{}: bufferViews[{}]", file.source, v);
+        const std::string where = keyrot::where(file.source, fmt::format("bufferViews[{}]", v));
         if (!views[v].is_object() || !views[v].contains("buffer"))
             throw input_error(where, "expected an object with a buffer");
         const std::size_t buffer = index_into(file, views[v]["buffer"], "buffers", where);

@@ -191,7 +191,7 @@ bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink, warn
     quat_order order = opts.order;
     const auto tracks = j.is_object() ? j.member("tracks") : std::nullopt;
     if (tracks) {
-        const std::string where = fmt::format("{}: document", opts.source);
+        const std::string where = keyrot::where(opts.source, "document");
         apply_fields(j, settings, order, where, settings_object::document, opts, warn);
         if (!tracks->is_object())
             throw input_error(where, fmt::format("'tracks': expected an object of named tracks, got {}", tracks->type_name()));

@@ -336,7 +336,7 @@ private:
 
     /// A member of "tracks": a track object, or a bare array of keys.
     void begin_track(object& tracks, std::string name) {
-        check_track_name(name, fmt::format("{}: document", opts_.source));
+        check_track_name(name, where(opts_.source, "document"));
         tracks.keys = true;
         object& track = track_.emplace(object::kind::track, name, "tracks." + name, tracks.settings, tracks.order);
         if (text_.peek() == '[') {
