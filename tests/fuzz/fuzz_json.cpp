@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "../json_same.hpp"
+#include "../support/json_same.hpp"
 #include "check.hpp"
 #include "io/common/interface.hpp"
 #include "io/document.hpp"
