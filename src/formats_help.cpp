@@ -6,19 +6,21 @@
 #include <string_view>
 
 #include "io/common/layout.hpp"
+#include "io/json/json_members.hpp"
 
 namespace keyrot {
 namespace {
 
-/// Each representation's fields in a JSON key object (the CSV columns come
-/// from io/common/layout, the names the readers and writers use).
-constexpr std::array<std::pair<rep, std::string_view>, 6> json_fields = {{
-    {rep::axis_angle, R"("axis": [x, y, z], "angle": a)"},
-    {rep::quat, R"("quat": [w, x, y, z] in the quat_order, or {"w": w, "x": x, "y": y, "z": z})"},
-    {rep::rotvec, R"("rotvec": [x, y, z])"},
-    {rep::euler, R"("euler": [e1, e2, e3], in the order of the sequence)"},
-    {rep::matrix, R"("matrix": [[m00, m01, m02], [m10, m11, m12], [m20, m21, m22]])"},
-    {rep::matrix4, R"("matrix": four rows of four, translation in the last column)"},
+/// Each representation's value in a JSON key object, under its member
+/// (io/json/json_members.hpp, the names the readers and writer use; the CSV
+/// columns come from io/common/layout).
+constexpr std::array<std::pair<rep, std::string_view>, 6> json_values = {{
+    {rep::axis_angle, "[x, y, z]"},
+    {rep::quat, R"([w, x, y, z] in the quat_order, or {"w": w, "x": x, "y": y, "z": z})"},
+    {rep::rotvec, "[x, y, z]"},
+    {rep::euler, "[e1, e2, e3], in the order of the sequence"},
+    {rep::matrix, "[[m00, m01, m02], [m10, m11, m12], [m20, m21, m22]]"},
+    {rep::matrix4, "four rows of four, translation in the last column"},
 }};
 
 std::string columns(rep r, quat_order order) { return fmt::format("{}", fmt::join(rotation_columns(r, order), ",")); }
@@ -42,7 +44,11 @@ std::string formats_help() {
            "\"quat_order\":\n\"wxyz\" | \"xyzw\", \"fps\" (the rate of \"frame\"). A KEY holds \"time\" or \"frame\", "
            "one rotation, and optionally\n\"translation\": [x, y, z], \"scale\": [x, y, z] and \"weights\": [w0, w1, ...]. "
            "The rotation's fields,\nby representation:\n";
-    for (const auto& [r, fields] : json_fields) out += fmt::format("  {:<12}{}\n", to_string(r), fields);
+    for (const auto& [r, value] : json_values) {
+        out += fmt::format("  {:<12}\"{}\": {}", to_string(r), rotation_member(r), value);
+        if (r == rep::axis_angle) out += fmt::format(", \"{}\": a", angle_member);
+        out += '\n';
+    }
     out += "\nNDJSON: one KEY object per line, with \"track\" when there are tracks; a first line without a rotation\n"
            "holds the settings, as keyrot writes it where needed (--settings-line).\n"
            "\nglTF 2.0 (.gltf with its buffers, or .glb): each node an animation moves is a track named after it\n"

@@ -14,6 +14,7 @@
 
 #include "io/common/interface.hpp"
 #include "io/common/layout.hpp"
+#include "io/json/json_members.hpp"
 #include "keyrot/error.hpp"
 #include "keyrot/track.hpp"
 
@@ -42,8 +43,9 @@ public:
         if (!k.time && !k.frame) fail("expected a 'time' or a 'frame'");
         if (k.time && k.frame && !frames_doc_) fail("a key has both 'time' and 'frame': expected exactly one");
 
-        const auto quat = obj_.member("quat"), axis = obj_.member("axis"), rotvec = obj_.member("rotvec"),
-                   euler = obj_.member("euler"), matrix = obj_.member("matrix"), angle = obj_.member("angle");
+        const auto quat = obj_.member(rotation_member(rep::quat)), axis = obj_.member(rotation_member(rep::axis_angle)),
+                   rotvec = obj_.member(rotation_member(rep::rotvec)), euler = obj_.member(rotation_member(rep::euler)),
+                   matrix = obj_.member(rotation_member(rep::matrix)), angle = obj_.member(angle_member);
         const int rotations = !!quat + !!axis + !!rotvec + !!euler + !!matrix;
         const auto translation = obj_.member("translation"), scale = obj_.member("scale"),
                    weights = obj_.member("weights");
@@ -105,12 +107,9 @@ public:
 
 private:
     std::string first_unknown_member() const {
-        constexpr std::array<std::string_view, 13> known = {"time",  "t",      "frame",       "quat",  "axis",
-                                                            "angle", "rotvec", "euler",       "matrix", "translation",
-                                                            "scale", "track",  "weights"};
         std::string name;
         obj_.members([&](std::string_view member, Value) {
-            if (name.empty() && std::find(known.begin(), known.end(), member) == known.end())
+            if (name.empty() && std::find(key_members.begin(), key_members.end(), member) == key_members.end())
                 name = member.empty() ? "\"\"" : member;
         });
         return name;

@@ -15,6 +15,7 @@
 #include "io/common/line_reader.hpp"
 #include "io/json/flat_json.hpp"
 #include "io/json/json_keys.hpp"
+#include "io/json/json_members.hpp"
 
 namespace keyrot {
 namespace {
@@ -241,9 +242,11 @@ namespace {
 template <class Value>
 bool is_header(Value j) {
     if (!j.is_object()) return false;
-    for (const char* field : {"time", "t", "frame", "quat", "axis", "rotvec", "matrix"})
+    for (const std::string_view field : time_members)
         if (j.member(field)) return false;
-    const auto euler = j.member("euler");
+    for (const std::string_view field : rotation_members)
+        if (field != rotation_member(rep::euler) && j.member(field)) return false;
+    const auto euler = j.member(rotation_member(rep::euler));  // also a setting: a sequence's name
     return !euler || euler->is_string();
 }
 

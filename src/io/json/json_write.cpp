@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/common/number_writer.hpp"
+#include "io/json/json_members.hpp"
 
 namespace keyrot {
 
@@ -89,18 +90,19 @@ private:
 
     void write_rotation(row_text& text, const rotation_values& r) {
         const double* v = r.v.data();
+        text.put(rotation_key_);
         switch (opts_.representation) {
-            case rep::quat: text.put(", \"quat\": "), array(text, v, 4); break;
+            case rep::quat: array(text, v, 4); break;
             case rep::axis_angle:
-                text.put(", \"axis\": "), array(text, v, 3);
-                text.put(", \"angle\": "), text.number(v[3], opts_.precision);
+                array(text, v, 3);
+                text.put(angle_key_), text.number(v[3], opts_.precision);
                 break;
-            case rep::rotvec: text.put(", \"rotvec\": "), array(text, v, 3); break;
-            case rep::euler: text.put(", \"euler\": "), array(text, v, 3); break;
+            case rep::rotvec:
+            case rep::euler: array(text, v, 3); break;
             case rep::matrix:
             case rep::matrix4: {
                 const std::size_t n = opts_.representation == rep::matrix ? 3 : 4;
-                text.put(", \"matrix\": [");
+                text.put('[');
                 for (std::size_t i = 0; i < n; ++i) {
                     if (i) text.put(", ");
                     array(text, v + i * n, n);
@@ -119,6 +121,9 @@ private:
     std::string name_;
     bool translation_ = false;
     std::size_t tracks_ = 0, rows_ = 0;
+    // The rotation's member names as each row writes them: ", \"quat\": ".
+    std::string rotation_key_ = fmt::format(", \"{}\": ", rotation_member(opts_.representation)),
+                angle_key_ = fmt::format(", \"{}\": ", angle_member);
 };
 
 }  // namespace

@@ -1,0 +1,52 @@
+#pragma once
+// The members of a JSON or NDJSON key object, named once for the readers
+// (what they look for, and what is unknown), the writer and `keyrot help
+// formats`.
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <string_view>
+
+#include "keyrot/convert.hpp"
+
+namespace keyrot {
+
+/// The member that holds a rotation of representation `r`: "axis" for
+/// axis-angle (its angle in angle_member), "matrix" for both matrices.
+constexpr std::string_view rotation_member(rep r) noexcept {
+    switch (r) {
+        case rep::quat: return "quat";
+        case rep::axis_angle: return "axis";
+        case rep::rotvec: return "rotvec";
+        case rep::euler: return "euler";
+        case rep::matrix:
+        case rep::matrix4: return "matrix";
+    }
+    return "";
+}
+/// Axis-angle's angle, beside its axis.
+inline constexpr std::string_view angle_member = "angle";
+/// A key's time: seconds ("time", or "t" in slerp's tables) or a frame.
+inline constexpr std::array<std::string_view, 3> time_members = {"time", "t", "frame"};
+
+namespace detail {
+template <std::size_t... N>
+constexpr auto joined(const std::array<std::string_view, N>&... parts) {
+    std::array<std::string_view, (N + ...)> out{};
+    std::size_t at = 0;
+    ((std::copy(parts.begin(), parts.end(), out.begin() + static_cast<std::ptrdiff_t>(at)), at += N), ...);
+    return out;
+}
+}  // namespace detail
+
+/// The rotation members, each once.
+inline constexpr std::array<std::string_view, 5> rotation_members = {
+    rotation_member(rep::quat), rotation_member(rep::axis_angle), rotation_member(rep::rotvec),
+    rotation_member(rep::euler), rotation_member(rep::matrix)};
+/// Every member a key object may hold: any other is unknown (a warning,
+/// an error with --strict).
+inline constexpr auto key_members =
+    detail::joined(time_members, rotation_members,
+                   std::array<std::string_view, 5>{angle_member, "translation", "scale", "track", "weights"});
+
+}  // namespace keyrot
