@@ -63,8 +63,8 @@ vec3 vector_part(quat q) noexcept;
 quat normalized(quat q) noexcept;
 /// v or q times the power of two that puts its largest component in [1, 2):
 /// exactly the same direction, with a length that can neither pass the
-/// largest double nor lose digits among the subnormals. Precondition:
-/// finite and non-zero. rescaled({1e-300, 0, 0}) = {2^997 * 1e-300, 0, 0}, about 1.34.
+/// largest double nor lose digits among the subnormals; zero comes back
+/// zero. rescaled({1e-300, 0, 0}) = {2^997 * 1e-300, 0, 0}, about 1.34.
 vec3 rescaled(vec3 v) noexcept;
 /// As rescaled(vec3): rescaled({4, 0, 0, 0}) = {1, 0, 0, 0}.
 quat rescaled(quat q) noexcept;

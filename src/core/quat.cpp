@@ -62,11 +62,12 @@ quat normalized(quat q) noexcept {
 
 namespace {
 
-/// e with the largest of these magnitudes in [2^e, 2^(e+1)).
+/// e with the largest of these magnitudes in [2^e, 2^(e+1)); 0 where all
+/// are zero or NaN, whose ilogb (INT_MIN here) could not be negated.
 int exponent_of_largest(std::initializer_list<double> xs) noexcept {
     double largest = 0;
     for (double x : xs) largest = std::fmax(largest, std::fabs(x));
-    return std::ilogb(largest);
+    return largest == 0 || std::isnan(largest) ? 0 : std::ilogb(largest);
 }
 
 }  // namespace

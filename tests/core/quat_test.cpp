@@ -87,3 +87,18 @@ TEST_CASE("norm of tiny and huge vectors neither underflows nor overflows") {
     CHECK(norm(vec3{3e-200, 4e-200, 0}) == doctest::Approx(5e-200).epsilon(1e-15));
     CHECK(norm(vec3{3e200, 4e200, 0}) == doctest::Approx(5e200).epsilon(1e-15));
 }
+
+TEST_CASE("rescaled: the largest component in [1, 2), the direction exact; zero stays zero") {
+    const vec3 v = rescaled(vec3{1e-300, -3e-301, 0});
+    CHECK(v.x == std::scalbn(1e-300, 997));  // 2^-997 <= 1e-300 < 2^-996
+    CHECK(v.y == std::scalbn(-3e-301, 997));
+    CHECK(v.z == 0);
+    CHECK(rescaled(quat{4, 0, -2, 0}).w == 1);
+    CHECK(rescaled(quat{4, 0, -2, 0}).y == -0.5);
+    // A zero axis (an axis-angle key of angle 0 may have one) reaches it:
+    // ilogb(0) is INT_MIN, whose negation the sanitizer build stops on.
+    const vec3 zero = rescaled(vec3{0, 0, 0});
+    CHECK((zero.x == 0 && zero.y == 0 && zero.z == 0));
+    const quat q = rescaled(quat{0, 0, 0, 0});
+    CHECK((q.w == 0 && q.x == 0 && q.y == 0 && q.z == 0));
+}
