@@ -29,11 +29,10 @@ def reads(path, command, cwd):
     # LeakSanitizer cannot work under ptrace: a sanitizer build traced checks no leaks.
     env = dict(os.environ, ASAN_OPTIONS=(os.environ.get("ASAN_OPTIONS", "") + ":detect_leaks=0").lstrip(":"))
     with tempfile.NamedTemporaryFile(suffix=".strace") as log:
-        status = subprocess.run(["strace", "-f", "-qq", "-e", "trace=openat,read,pread64", "-o", log.name] + command,
-                                cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-        if status.returncode != 0:
-            print(status.stderr.decode(errors="replace").strip()[-400:])
-        status = status.returncode
+        run = subprocess.run(["strace", "-f", "-qq", "-e", "trace=openat,read,pread64", "-o", log.name] + command,
+                             cwd=cwd, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        if run.returncode != 0:
+            print(run.stderr.decode(errors="replace").strip()[-400:])
         target = os.path.realpath(os.path.join(cwd, path))
         descriptors, total = set(), 0
         with open(log.name) as lines:
@@ -49,7 +48,7 @@ def reads(path, command, cwd):
                 read = re.search(r"\b(?:pread64|read)\((\d+),.*= (\d+)$", line)
                 if read and int(read.group(1)) in descriptors:
                     total += int(read.group(2))
-    return total / os.path.getsize(target), status
+    return total / os.path.getsize(target), run.returncode
 
 
 def main():
