@@ -12,6 +12,7 @@
 #include "app/app.hpp"
 #include "cli.hpp"
 #include "io/common/output.hpp"
+#include "ground/warnings.hpp"
 #include "keyrot/error.hpp"
 
 namespace {

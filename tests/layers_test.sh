@@ -28,6 +28,10 @@ none "ground includes only ground and the core's error" \
     "$(includes '(core|io|app)/|keyrot/[^e]|cli|suggest|formats_help' src/ground)"
 none "the core includes no I/O and no command" \
     "$(includes '(io|app)/|cli|suggest|formats_help' include/keyrot src/core)"
+none "the core says nothing in flags (the CLI words its option errors)" \
+    "$(grep -rnE '"[^"]*--[a-z]' include/keyrot src/core)"
+none "the installed API holds no I/O: raw keys, warnings and usage errors are private" \
+    "$(grep -rnwE 'raw_key|key_settings|make_key|warnings|usage_error|print_error' include/keyrot | grep -v '^[^:]*:[0-9]*:\s*//')"
 none "io includes no command" "$(includes 'app/|cli|suggest|formats_help' src/io)"
 none "io/common includes no format, no thread pool, nothing above it" \
     "$(includes 'io/(csv|json|gltf|bvh|fast)/|io/(open|document)\.' src/io/common)"

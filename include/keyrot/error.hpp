@@ -1,9 +1,7 @@
 #pragma once
-// keyrot's exceptions. All are caught once, at the top, and printed as one
-// line "keyrot: <what>" with exit status 2.
-#include <mutex>
-#include <ostream>
-#include <set>
+// keyrot's exceptions: bad input data, and options that cannot apply.
+// The program catches them once, at the top, and prints each as one line.
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -27,9 +25,20 @@ struct error : std::runtime_error {
     explicit error(const std::string& message) : std::runtime_error(printable(excerpt(message, 4096))) {}
 };
 
-/// A bad command line.
-struct usage_error : error {
-    using error::error;
+/// The options that an option_error is about.
+enum class option {
+    method,          ///< the interpolation method
+    euler_sequence,  ///< the Euler sequence a method or representation needs
+};
+
+/// Options that cannot apply, whatever the data: method::euler without an
+/// Euler sequence. `which` names the option, so that a front end can say
+/// the message in its own terms (its flags); a front end's own option
+/// errors (a bad command line) have none.
+struct option_error : error {
+    option_error(option which_option, const std::string& message) : error(message), which(which_option) {}
+    explicit option_error(const std::string& message) : error(message) {}
+    std::optional<option> which;
 };
 
 /// Bad input data. `where` names the source and the line or key:
@@ -37,28 +46,6 @@ struct usage_error : error {
 struct input_error : error {
     input_error(const std::string& where, const std::string& message)
         : error(where + ": " + message) {}
-};
-
-/// Prints "keyrot: <message>" as one printable line: print_error(err, "walk.csv:3: ...").
-void print_error(std::ostream& err, std::string_view message);
-
-/// Warnings for one input source, each kind printed at most once
-/// ("one warning per file") as "keyrot: warning: <source>: <message>".
-/// Safe to use from the reading and the formatting thread at once.
-class warnings {
-public:
-    warnings(std::ostream& err, std::string source) : err_(err), source_(std::move(source)) {}
-    void once(const std::string& kind, const std::string& message);
-    const std::string& source() const noexcept { return source_; }
-    /// An attempt's warnings, held back until it succeeded: `printed` (its
-    /// text) is printed here, and what `other` said counts as said here.
-    void adopt(warnings& other, std::string_view printed);
-
-private:
-    std::ostream& err_;
-    std::string source_;
-    std::mutex mutex_;
-    std::set<std::string> said_;
 };
 
 }  // namespace keyrot

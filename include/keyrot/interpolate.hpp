@@ -14,8 +14,8 @@
 
 namespace keyrot {
 
-/// Throws usage_error for method::euler without an Euler sequence:
-/// check_method(method::euler, std::nullopt) says "--method euler needs an Euler sequence".
+/// Throws option_error for method::euler without an Euler sequence:
+/// check_method(method::euler, std::nullopt) says "method euler needs an Euler sequence".
 void check_method(method m, const std::optional<euler_seq>& seq);
 
 /// glTF's cubic Hermite spline between values v0 at s = 0 and v1 at s = 1,
@@ -100,7 +100,7 @@ private:
 /// angles for --method euler. Memory stays a few keys.
 class segment_builder {
 public:
-    /// Throws usage_error for method::euler without a sequence.
+    /// Throws option_error for method::euler without a sequence.
     segment_builder(method m, path p, const std::optional<euler_seq>& seq);
     /// Adds the next key (times strictly increasing); returns its rotation
     /// with the sign the path gave it.
@@ -127,7 +127,7 @@ private:
 /// A whole track's curve, for callers that have all its keys.
 class rotation_curve {
 public:
-    /// Throws usage_error for --method euler on a track without a sequence.
+    /// Throws option_error for method::euler on a track without a sequence.
     rotation_curve(const track& t, method m, path p);
     /// Key i's rotation, with the sign the path gave it.
     quat at_key(std::size_t i) const noexcept { return keys_[i]; }

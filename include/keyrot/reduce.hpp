@@ -41,7 +41,7 @@ struct reduce_summary {
 /// key depends on the kept keys on both sides: the track).
 class track_reducer {
 public:
-    /// Throws usage_error for method::euler without a sequence, and for
+    /// Throws option_error for method::euler without a sequence, and for
     /// method::cubicspline (its tangents belong to the keys it has).
     track_reducer(const reduce_options& opts, const std::optional<euler_seq>& seq, std::string source,
                   std::function<void(const key&)> keep);

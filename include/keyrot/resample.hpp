@@ -35,10 +35,15 @@ using frame_sink = std::function<void(const sample&)>;
 /// seconds: a frame within tolerance of a key counts as at it.
 std::pair<double, double> frame_span(double first, double last, const resample_options& opts);
 
+/// A track that would have more frames than resample_options::max_frames.
+struct frame_limit_error : input_error {
+    using input_error::input_error;
+};
+
 /// Throws input_error (naming the key, in `source`) when a track whose keys
-/// run from `first` to `last` would have more than opts.max_frames frames or
-/// frame numbers beyond 2^53: keys from 0 s to 1e6 s at 24 fps (24 million
-/// frames) are refused under the default limit.
+/// run from `first` to `last` would have more than opts.max_frames frames
+/// (frame_limit_error) or frame numbers beyond 2^53: keys from 0 s to 1e6 s
+/// at 24 fps (24 million frames) are refused under the default limit.
 void check_frame_range(const key& first, const key& last, const std::string& track_name,
                        const resample_options& opts, const std::string& source);
 
@@ -95,7 +100,7 @@ public:
     /// `carried`: the channels some key of the track carries.
     track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, channels carried,
                     frame_sink emit);
-    /// Precondition: times strictly increasing (check_next, as track_builder checks).
+    /// Precondition: times strictly increasing (check_next).
     void add(const key& k);
     /// After the last key: the remaining frames.
     void finish();

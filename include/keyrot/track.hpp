@@ -1,9 +1,6 @@
 #pragma once
-// Keys and tracks: what the readers produce (raw_key, as written in the file),
-// what the rest of keyrot works on (key, with a unit quaternion), and the
-// rows made of them (sample).
-// make_key is the one place where raw values become rotations, so every
-// input format is validated the same way.
+// Keys and tracks: what keyrot works on (key, with a unit quaternion, and
+// track, its keys in time order), and the rows made of them (sample).
 #include <algorithm>
 #include <array>
 #include <memory>
@@ -67,59 +64,12 @@ struct track_interpolation {
     bool operator==(const track_interpolation&) const = default;
 };
 
-/// One key exactly as read: numbers in the file's units, not yet checked
-/// beyond being finite. Quaternion values are in (w, x, y, z) order.
-struct raw_key {
-    location at;  ///< for errors
-    std::optional<double> time, frame;
-    rep kind = rep::quat;
-    std::array<double, 16> values{};  ///< as many as `kind` needs
-    std::optional<vec3> translation, scale;
-    morph_weights weights;
-    std::string unknown;  ///< a JSON key's first field that keyrot does not read, if any
-    std::optional<full_spline_key> spline;  ///< glTF CUBICSPLINE keys only
-
-    /// Back to a default key in place, keeping the strings' storage: a reader
-    /// that gives millions of keys fills one, where a fresh raw_key for each
-    /// would be copied, tangents and all, once more.
-    void reset() noexcept {
-        at.line = 0;
-        at.path.clear();
-        time.reset(), frame.reset();
-        kind = rep::quat;
-        values.fill(0);
-        translation.reset(), scale.reset();
-        weights.clear();
-        unknown.clear();
-        spline.reset();
-    }
-};
-
 /// The rate frame numbers count at where neither the file nor the user
 /// states one, whatever rate the output is resampled at.
 inline constexpr double default_key_fps = 24;
 
-/// Settings that describe a document (flags, overridden by its own fields).
-struct key_settings {
-    angle_unit angles = angle_unit::degrees;
-    std::optional<euler_seq> euler;
-    /// The rate frame numbers count at, where the file or the user states
-    /// one; none: default_key_fps, assumed (and never written as stated).
-    std::optional<double> key_fps;
-    bool strict = false;
-    std::optional<track_interpolation> interpolation = std::nullopt;  ///< a glTF track's own
-    double frame_rate() const { return key_fps.value_or(default_key_fps); }
-};
-
-/// What a reader knows of a track before its keys.
-struct raw_track {
-    std::string name;  ///< empty for a file without tracks
-    location at;  ///< the JSON track, or the CSV header, for errors
-    key_settings settings;
-};
-
 struct key {
-    location at;                  ///< as raw_key::at
+    location at;                  ///< where it was read, for errors
     double time = 0;              ///< seconds
     std::optional<double> frame;  ///< as given (the key's time, unless it also has a time)
     bool has_time = true;         ///< the input gave a time (not only a frame)
@@ -140,7 +90,9 @@ struct track {
     std::string name;
     std::optional<euler_seq> euler;  ///< the sequence in force for this track
     std::vector<key> keys;
-    std::optional<double> key_fps;  ///< as key_settings::key_fps
+    /// The rate frame numbers count at, where the file or the user states
+    /// one; none: default_key_fps, assumed (and never written as stated).
+    std::optional<double> key_fps;
     std::optional<track_interpolation> interpolation = std::nullopt;  ///< the file's own, where it states one
     /// The rate its keys' frame numbers count at.
     double frame_rate() const { return key_fps.value_or(default_key_fps); }
@@ -182,17 +134,6 @@ struct sample {
 };
 static_assert(std::is_trivially_copyable_v<sample>);
 
-/// One key converted and validated on its own: rotation to a unit
-/// quaternion, frame to time. Throws input_error naming the key; warns once
-/// per source about renormalised quaternions. A raw key of kind
-/// rep::axis_angle with values {0, 0, 2, 90} (degrees) becomes rotation
-/// {cos 45deg, 0, 0, sin 45deg}.
-key make_key(const raw_key& raw, const key_settings& settings, warnings& warn);
-
-/// A field of the input that keyrot does not read (a misspelt "translaton"):
-/// one warning per source, or with strict settings an input_error at `where`.
-void unknown_field(std::string_view name, const std::string& where, const key_settings& settings, warnings& warn);
-
 /// Throws input_error unless `next` may follow `previous` in a track:
 /// strictly after it, and with as many morph weights (none, or one per
 /// target, on every key). Keys at 0 s then 0 s give "walk.csv:3: time 0 s
@@ -207,27 +148,5 @@ inline void check_next(const key& previous, const key& next, const std::string& 
     if (!(next.time > previous.time) || next.weights.size() != previous.weights.size()) [[unlikely]]
         not_next(previous, next, source);
 }
-
-/// A track built one key at a time (make_key, check_next, at least one
-/// key), as a reader hands keys over, so that their raw values need not all
-/// be held at once.
-///
-///     track_builder b("hip", {}, key_settings{});
-///     b.add(raw_key_at_time_0, warn);
-///     const track t = std::move(b).finish(warn);
-class track_builder {
-public:
-    /// `at` and `settings` as raw_track's.
-    track_builder(std::string name, location at, key_settings settings);
-    /// make_key, and check_next against the key before.
-    void add(const raw_key& raw, warnings& warn);
-    /// Throws input_error for a track without keys.
-    track finish(warnings& warn) &&;
-
-private:
-    location at_;
-    key_settings settings_;
-    track track_;
-};
 
 }  // namespace keyrot

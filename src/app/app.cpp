@@ -4,7 +4,9 @@
 
 namespace keyrot {
 
-int run(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
+namespace {
+
+int run_command(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
     switch (o.cmd) {
         case command::resample:
         case command::convert:
@@ -14,6 +16,17 @@ int run(const options& o, std::istream& in, std::ostream& out, std::ostream& err
         case command::info: return detail::run_info(o, in, out, err);
     }
     return 2;
+}
+
+}  // namespace
+
+int run(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
+    try {
+        return run_command(o, in, out, err);
+    } catch (const option_error& e) {
+        if (!e.which) throw;
+        throw in_flags(e);  // the core's, said in flags
+    }
 }
 
 }  // namespace keyrot

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/usage_error.hpp"
 #include "io/common/format.hpp"
 #include "io/common/layout.hpp"
 #include "keyrot/compare.hpp"

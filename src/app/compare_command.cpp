@@ -148,7 +148,7 @@ grade grade_answer(const options& o, const input_source& key_src, const surveyed
         if (answer.failed) std::rethrow_exception(answer.failed);
         g.result = compare_files(o, key_src, key, o, src, *answer.file, begin, row);
         if (!g.pass()) g.hint = likely_cause(o, key_src, key, src, *answer.file, *g.result);
-    } catch (const usage_error&) {
+    } catch (const option_error&) {  // the whole run's
         throw;
     } catch (const error& e) {
         g.error = e.what();

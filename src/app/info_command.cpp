@@ -211,7 +211,7 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
             const described_file file = describe_file(o, src, warn);
             const auto bvh = file.fmt == format::bvh ? read_bvh_source(*src.open(), reading(o, src.source())) : nullptr;
             text += as_json ? info_json(file, o.segments, bvh.get()) : info_text(file, o.precision, bvh.get());
-        } catch (const usage_error&) {
+        } catch (const option_error&) {  // the whole run's
             throw;
         } catch (const error& e) {
             print_error(err, e.what());

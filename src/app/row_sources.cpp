@@ -6,6 +6,7 @@
 #include <ostream>
 #include <utility>
 
+#include "app/usage_error.hpp"
 #include "io/common/output.hpp"
 #include "io/json/json.hpp"
 
@@ -40,6 +41,17 @@ sample key_row(const key& k) {
 /// they are held, LINEAR (slerp for a rotation) for any other.
 method linear_or_step(method m) { return m == method::step ? method::step : method::slerp; }
 
+/// check_frame_range, its frame limit said as the flag that raises it:
+/// "... expected at most 240 (--max-frames N raises the limit)".
+void check_frames(const key& first, const key& last, const std::string& track_name, const resample_options& opts,
+                  const std::string& source) {
+    try {
+        check_frame_range(first, last, track_name, opts, source);
+    } catch (const frame_limit_error& e) {
+        throw error(std::string(e.what()) + " (--max-frames N raises the limit)");
+    }
+}
+
 /// resample: every frame of the grid within a track's keys.
 class frame_rows final : public row_source {
 public:
@@ -67,7 +79,7 @@ public:
     void check(const document_facts& d, warnings& warn) const override {
         for (const auto& t : d.tracks) {
             check_method(of(t.interpolation).how, t.euler);
-            check_frame_range(t.first, t.last, t.name, of(t.interpolation), warn.source());
+            check_frames(t.first, t.last, t.name, of(t.interpolation), warn.source());
         }
         const bool assumed = std::any_of(d.tracks.begin(), d.tracks.end(), [](const auto& t) { return !t.key_fps; });
         if (d.counted && assumed && opts_.fps != default_key_fps)
@@ -82,7 +94,7 @@ public:
         // (The first key was checked as a key of its own.)
         const double frames = (k.time - first.time) * opts_.fps;
         if (std::fabs(k.time * opts_.fps) < 0x1p52 && frames + 2 < opts_.max_frames) return;
-        check_frame_range(first, k, name, opts_, source);
+        check_frames(first, k, name, opts_, source);
     }
     /// Frames are LINEAR (dense enough for any method), or STEP where they are held.
     track_interpolation written(const std::optional<track_interpolation>& own) const override {

@@ -319,7 +319,7 @@ int transform_one(const options& o, const std::string& name, std::istream& in, s
         const input_source src(name, in);
         transform(plan_for(o, name, src, batch), src, out, err);
         return 0;
-    } catch (const usage_error&) {
+    } catch (const option_error&) {  // the whole run's
         throw;
     } catch (const error& e) {
         print_error(err, e.what());

@@ -111,7 +111,7 @@ void hermite(std::span<const double> v0, std::span<const double> b0, std::span<c
 }
 
 void check_method(method m, const std::optional<euler_seq>& seq) {
-    if (m == method::euler && !seq) throw usage_error("--method euler needs an Euler sequence: expected --euler SEQ");
+    if (m == method::euler && !seq) throw option_error(option::euler_sequence, "method euler needs an Euler sequence");
 }
 
 segment_builder::segment_builder(method m, path p, const std::optional<euler_seq>& seq)

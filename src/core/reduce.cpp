@@ -35,9 +35,8 @@ track_reducer::track_reducer(const reduce_options& opts, const std::optional<eul
     : opts_(opts), seq_(seq), source_(std::move(source)), keep_(std::move(keep)), builder_(opts.how, opts.way, seq) {
     check_method(opts.how, seq);
     if (opts.how == method::cubicspline)
-        throw usage_error(
-            "reduce plays keys as slerp, nlerp, squad, step or euler: expected one of them as --method "
-            "(a CUBICSPLINE track's tangents belong to the keys it has)");
+        throw option_error(option::method, "reduce plays keys as slerp, nlerp, squad, step or euler, not cubicspline "
+                                           "(a CUBICSPLINE track's tangents belong to the keys it has)");
 }
 
 track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, std::optional<std::size_t> before,

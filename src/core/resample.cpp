@@ -41,11 +41,10 @@ void check_frame_range(const key& first, const key& last, const std::string& tra
                                                                k->time, frame, fps));
     }
     if (last_frame - first_frame + 1 > opts.max_frames)
-        throw input_error(where(source, last.at),
-                          fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g} "
-                                      "(--max-frames N raises the limit)",
-                                      track_name.empty() ? "" : fmt::format("track '{}': ", track_name), first.time,
-                                      last.time, last_frame - first_frame + 1, fps, opts.max_frames));
+        throw frame_limit_error(where(source, last.at),
+                                fmt::format("{}keys from {} s to {} s make {:g} frames at {} fps: expected at most {:g}",
+                                            track_name.empty() ? "" : fmt::format("track '{}': ", track_name),
+                                            first.time, last.time, last_frame - first_frame + 1, fps, opts.max_frames));
 }
 
 vec3 channel_between(method how, double ta, const vec3& a, const vec3& out_a, double tb, const vec3& b, const vec3& in_b,

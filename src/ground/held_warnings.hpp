@@ -2,6 +2,7 @@
 // Warnings held back while a way of reading an input is tried.
 #include <sstream>
 
+#include "ground/warnings.hpp"
 #include "keyrot/error.hpp"
 
 namespace keyrot {

@@ -13,6 +13,7 @@
 
 #include "io/common/format.hpp"
 #include "io/common/layout.hpp"
+#include "io/common/raw_key.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {

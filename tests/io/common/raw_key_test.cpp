@@ -1,4 +1,4 @@
-#include "keyrot/track.hpp"
+#include "io/common/raw_key.hpp"
 
 #include <doctest/doctest.h>
 
