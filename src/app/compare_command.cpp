@@ -21,6 +21,7 @@
 #include "io/common/layout.hpp"
 #include "io/csv/csv.hpp"
 #include "io/json/json.hpp"
+#include "io/json/json_object.hpp"
 
 namespace keyrot::detail {
 
@@ -56,9 +57,6 @@ std::string number_text(std::optional<double> v) {
     if (v) append_number(out, *v, std::nullopt);
     return out;
 }
-
-/// A JSON number, or null.
-std::string json_number(std::optional<double> v) { return v ? number_text(v) : "null"; }
 
 /// A file name as a JSON string (a name that is not UTF-8 printed as \xNN).
 std::string json_name(std::string_view name) { return json_quote(printable(name)); }
@@ -215,13 +213,12 @@ public:
             emit(o_, line, out);
         } else {
             if (o_.report == format::json) {
-                std::string end = fmt::format(
-                    "], \"rows\": {}, \"failed\": {}, \"missing\": {}, \"extra\": {}, \"tolerance\": {}, "
-                    "\"tolerance_translation\": {}, \"max_difference\": {}, \"pass\": {}",
-                    c.compared, c.failed, c.missing, c.extra, number_text(o_.tol_deg), number_text(o_.tol_translation),
-                    json_number(worst_angle(c)), g.pass());
-                if (!g.hint.empty()) end += ", \"hint\": " + json_quote(g.hint);
-                to_->write(end + "}\n");
+                json_object end;  // the members after "entries"
+                end.count("rows", c.compared).count("failed", c.failed).count("missing", c.missing);
+                end.count("extra", c.extra).number("tolerance", o_.tol_deg).number("tolerance_translation", o_.tol_translation);
+                end.number("max_difference", worst_angle(c)).flag("pass", g.pass());
+                if (!g.hint.empty()) end.text("hint", g.hint);
+                to_->write("], " + end.members() + "}\n");
             }
             to_->finish();
             err_ << line;  // (standard output holds the report alone)
@@ -241,16 +238,15 @@ private:
         to_->write(line + '\n');
     }
     void json_row(const row_difference& r) {
-        std::string entry = fmt::format("{}{{\"track\": {}, \"frame\": {}, \"time\": {}, \"difference\": {}",
-                                        entries_++ ? ",\n" : "\n", json_quote(r.track), json_number(r.frame),
-                                        number_text(r.time), json_number(r.angle_deg));
-        if (r.translation) entry += ", \"translation_difference\": " + number_text(r.translation);
-        if (r.scale) entry += ", \"scale_difference\": " + number_text(r.scale);
-        if (r.weights) entry += ", \"weights_difference\": " + number_text(r.weights);
-        if (r.extra) entry += ", \"extra\": true";
-        entry += fmt::format(", \"pass\": {}", r.pass());
-        if (!r.pass()) entry += ", \"reason\": " + json_quote(r.problem);
-        to_->write(entry + '}');
+        json_object entry;
+        entry.text("track", r.track).number("frame", r.frame).number("time", r.time).number("difference", r.angle_deg);
+        if (r.translation) entry.number("translation_difference", r.translation);
+        if (r.scale) entry.number("scale_difference", r.scale);
+        if (r.weights) entry.number("weights_difference", r.weights);
+        if (r.extra) entry.flag("extra", true);
+        entry.flag("pass", r.pass());
+        if (!r.pass()) entry.text("reason", r.problem);
+        to_->write((entries_++ ? ",\n" : "\n") + entry.object());
     }
 
     static constexpr std::size_t max_reasons = 10;
@@ -291,7 +287,7 @@ int compare_one(const options& o, const input_source& key_src, const input_sourc
         [&](const row_difference& r) { report.row(r); });
     if (g.result) return report.finish(g, out);
     print_error(err, g.error);
-    if (o.report == format::json) emit(o, fmt::format("{{\"error\": {}, \"pass\": false}}\n", json_quote(g.error)), out);
+    if (o.report == format::json) emit(o, json_object().text("error", g.error).flag("pass", false).object() + '\n', out);
     return 2;
 }
 
@@ -355,33 +351,32 @@ std::string grade_table_csv(const std::vector<grade>& grades) {
 
 std::string grade_table_json(const std::string& key, const std::vector<grade>& grades, const tolerances& tol) {
     const auto count = [&](std::string_view v) {
-        return std::count_if(grades.begin(), grades.end(), [&](const grade& g) { return g.verdict() == v; });
+        return static_cast<std::size_t>(
+            std::count_if(grades.begin(), grades.end(), [&](const grade& g) { return g.verdict() == v; }));
     };
-    std::string out = fmt::format("{{\"key\": {}, \"tolerance\": {}, \"tolerance_translation\": {}, \"answers\": {}, "
-                                  "\"pass\": {}, \"fail\": {}, \"unreadable\": {}, \"grades\": [",
-                                  json_name(key), number_text(tol.rotation_deg), number_text(tol.translation),
-                                  grades.size(), count("pass"), count("fail"), count("unreadable"));
+    json_object table;
+    table.raw("key", json_name(key)).number("tolerance", tol.rotation_deg).number("tolerance_translation", tol.translation);
+    table.count("answers", grades.size()).count("pass", count("pass")).count("fail", count("fail"));
+    table.count("unreadable", count("unreadable"));
+    std::string each = "[";
     for (std::size_t i = 0; i < grades.size(); ++i) {
         const grade& g = grades[i];
-        out += i ? ",\n" : "\n";
-        out += fmt::format("{{\"answer\": {}, \"grade\": \"{}\"", json_name(g.file), g.verdict());
+        json_object row;
+        row.raw("answer", json_name(g.file)).text("grade", g.verdict());
         if (!g.result) {
-            out += ", \"error\": " + json_quote(g.error) + "}";
-            continue;
+            row.text("error", g.error);
+        } else {
+            const comparison_summary& c = *g.result;
+            const row_difference* worst = c.worst ? &*c.worst : nullptr;
+            row.count("rows", c.compared).count("failed", c.failed).count("missing", c.missing).count("extra", c.extra);
+            row.number("max_difference", worst ? worst->angle_deg : std::nullopt);
+            row.raw("track", worst ? json_quote(worst->track) : "null");
+            row.number("time", worst ? std::optional(worst->time) : std::nullopt);
+            row.raw("reason", g.pass() && g.hint.empty() ? "null" : json_quote(row_of(g).reason));
         }
-        const comparison_summary& c = *g.result;
-        const row_difference* worst = c.worst ? &*c.worst : nullptr;
-        out += fmt::format(", \"rows\": {}, \"failed\": {}, \"missing\": {}, \"extra\": {}, \"max_difference\": {}, "
-                           "\"track\": {}, \"time\": {}, \"reason\": {}",
-                           c.compared, c.failed, c.missing, c.extra,
-                           json_number(worst ? worst->angle_deg : std::nullopt),
-                           worst ? json_quote(worst->track) : "null",
-                           json_number(worst ? std::optional(worst->time) : std::nullopt),
-                           g.pass() && g.hint.empty() ? "null" : json_quote(row_of(g).reason));
-        out += '}';
+        each += (i ? ",\n" : "\n") + row.object();
     }
-    out += "]}\n";
-    return out;
+    return table.raw("grades", each + ']').object() + '\n';
 }
 
 }  // namespace

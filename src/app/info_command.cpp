@@ -13,6 +13,7 @@
 #include "io/common/layout.hpp"
 #include "io/document.hpp"
 #include "io/json/json.hpp"
+#include "io/json/json_object.hpp"
 #include "keyrot/describe.hpp"
 
 namespace keyrot::detail {
@@ -135,67 +136,66 @@ std::string info_text(const described_file& file, std::optional<int> precision, 
     return out;
 }
 
+/// JSON strings, as a JSON array: ["a", "b"].
+std::string json_array(const std::vector<std::string>& quoted) { return fmt::format("[{}]", fmt::join(quoted, ", ")); }
+
+/// {"count": 12, "first": [1, 5, ...]}: how many, and the first ten.
+std::string json_key_list(const key_list& l) {
+    return json_object().count("count", l.count).raw("first", fmt::format("[{}]", fmt::join(l.first, ", "))).object();
+}
+
 /// `segments`: every segment listed (--segments).
 std::string info_json(const described_file& file, bool segments, const bvh_source* bvh) {
-    auto num = [](double v) {
-        std::string s;
-        append_number(s, v, std::nullopt);
-        return s;
-    };
-    auto list = [](const key_list& l) {
-        return fmt::format("{{\"count\": {}, \"first\": [{}]}}", l.count, fmt::join(l.first, ", "));
-    };
-    std::string out = "{\"source\": " + json_quote(file.source) + ", \"format\": \"" +
-                      std::string(to_string(file.fmt)) + "\", ";
-    if (bvh)
-        out += fmt::format("\"frames\": {}, \"fps\": {}, \"frame_time\": {}, ", bvh->frames, num(bvh->fps),
-                           num(bvh->frame_time));
-    out += "\"tracks\": [";
+    json_object top;
+    top.text("source", file.source).text("format", to_string(file.fmt));
+    if (bvh) top.count("frames", bvh->frames).number("fps", bvh->fps).number("frame_time", bvh->frame_time);
+    std::string tracks = "[";
     for (std::size_t n = 0; n < file.tracks.size(); ++n) {
-        const track_info& t = file.tracks[n].keys.info();
+        const described_track& d = file.tracks[n];
+        const track_info& t = d.keys.info();
         std::vector<std::string> reps;
-        for (rep r : t.given_as) reps.push_back(fmt::format("\"{}\"", to_string(r)));
-        const auto segment = [&](const segment_info& s) {
-            return fmt::format("{{\"angle\": {}, \"speed\": {}, \"direct_long_way\": {}}}", num(s.angle_deg),
-                               num(s.speed_deg_s), t.signed_keys ? fmt::format("{}", s.direct_long_way) : "null");
-        };
-        std::string more;
-        if (file.tracks[n].counted)
-            more += fmt::format(", \"key_fps\": {}, \"key_fps_stated\": {}",
-                                num(file.tracks[n].key_fps.value_or(default_key_fps)),
-                                file.tracks[n].key_fps.has_value());
-        if (t.keys > 1)
-            more += fmt::format(", \"shortest_gap\": {}, \"longest_gap\": {}, \"largest_segment\": {{\"from\": {}, "
-                                "\"start\": {}, \"end\": {}, \"angle\": {}, \"speed\": {}}}",
-                                num(t.shortest_gap), num(t.longest_gap), t.largest_from, num(t.largest_start),
-                                num(t.largest_end), num(t.largest->angle_deg), num(t.largest->speed_deg_s));
+        for (rep r : t.given_as) reps.push_back(json_quote(to_string(r)));
+        json_object track;
+        track.text("name", t.name).count("keys", t.keys).number("start", t.start).number("end", t.end);
+        track.raw("given_as", json_array(reps));
+        if (d.counted) track.number("key_fps", d.key_fps.value_or(default_key_fps)).flag("key_fps_stated", d.key_fps.has_value());
+        if (t.keys > 1) {
+            track.number("shortest_gap", t.shortest_gap).number("longest_gap", t.longest_gap);
+            track.raw("largest_segment", json_object()
+                                             .count("from", t.largest_from)
+                                             .number("start", t.largest_start)
+                                             .number("end", t.largest_end)
+                                             .number("angle", t.largest->angle_deg)
+                                             .number("speed", t.largest->speed_deg_s)
+                                             .object());
+        }
         if (segments) {
             std::vector<std::string> each;
-            for (const segment_info& s : t.segments) each.push_back(segment(s));
-            more += fmt::format(", \"segments\": [{}]", fmt::join(each, ", "));
+            for (const segment_info& s : t.segments)
+                each.push_back(json_object()
+                                   .number("angle", s.angle_deg)
+                                   .number("speed", s.speed_deg_s)
+                                   .raw("direct_long_way", t.signed_keys ? (s.direct_long_way ? "true" : "false") : "null")
+                                   .object());
+            track.raw("segments", json_array(each));
         }
-        if (const std::size_t w = file.tracks[n].carried.weights) more += fmt::format(", \"weights\": {}", w);
+        if (const std::size_t w = d.carried.weights) track.count("weights", w);
         // Only where the file states it (glTF).
-        if (file.tracks[n].interpolation) {
-            std::vector<std::string> each;
-            for (const auto& [channel, how] : interpolations(file.tracks[n]))
-                each.push_back(fmt::format("\"{}\": \"{}\"", channel, how));
-            more += fmt::format(", \"interpolation\": {{{}}}", fmt::join(each, ", "));
+        if (d.interpolation) {
+            json_object each;
+            for (const auto& [channel, how] : interpolations(d)) each.text(channel, how);
+            track.raw("interpolation", each.object());
         }
         if (bvh) {
             std::vector<std::string> names;
             for (const std::string& c : bvh->joints[n].channels) names.push_back(json_quote(c));
-            more += fmt::format(", \"channels\": [{}], \"euler\": \"{}\"", fmt::join(names, ", "),
-                                bvh->joints[n].euler.name);
+            track.raw("channels", json_array(names)).text("euler", bvh->joints[n].euler.name);
         }
-        out += fmt::format("{}\n{{\"name\": {}, \"keys\": {}, \"start\": {}, \"end\": {}, \"given_as\": [{}]{}, "
-                           "\"flipped\": {}, \"renormalised\": {}, \"near_gimbal_lock\": {}",
-                           n ? "," : "", json_quote(t.name), t.keys, num(t.start), num(t.end), fmt::join(reps, ", "),
-                           more, t.signed_keys ? list(t.flipped) : "null", list(t.renormalised), list(t.near_gimbal));
-        out += '}';
+        track.raw("flipped", t.signed_keys ? json_key_list(t.flipped) : "null");
+        track.raw("renormalised", json_key_list(t.renormalised)).raw("near_gimbal_lock", json_key_list(t.near_gimbal));
+        tracks += (n ? ",\n" : "\n") + track.object();
     }
-    out += "]}\n";
-    return out;
+    return top.raw("tracks", tracks + ']').object() + '\n';
 }
 
 }  // namespace

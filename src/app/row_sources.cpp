@@ -8,7 +8,7 @@
 
 #include "app/usage_error.hpp"
 #include "io/common/output.hpp"
-#include "io/json/json.hpp"
+#include "io/json/json_object.hpp"
 
 namespace keyrot::detail {
 
@@ -240,17 +240,26 @@ private:
     }
     std::string json_report() const {
         std::size_t keys = 0, kept = 0;
-        std::string tracks;
+        std::vector<std::string> tracks;
         for (const auto& [name, s] : summaries_) {
             keys += s.keys, kept += s.kept;
-            if (!tracks.empty()) tracks += ", ";
-            tracks += fmt::format("{{\"track\": {}, \"keys\": {}, \"kept\": {}, \"largest_error\": {}, "
-                                  "\"largest_translation_error\": {}}}",
-                                  json_quote(name), s.keys, s.kept, s.worst_deg, s.worst_translation);
+            tracks.push_back(json_object()
+                                 .text("track", name)
+                                 .count("keys", s.keys)
+                                 .count("kept", s.kept)
+                                 .number("largest_error", s.worst_deg)
+                                 .number("largest_translation_error", s.worst_translation)
+                                 .object());
         }
-        return fmt::format("{{\"file\": {}, \"tol\": {}, \"tol_translation\": {}, \"keys\": {}, \"kept\": {}, "
-                           "\"tracks\": [{}]}}\n",
-                           json_quote(source_), opts_.tol_deg, opts_.tol_translation, keys, kept, tracks);
+        return json_object()
+                   .text("file", source_)
+                   .number("tol", opts_.tol_deg)
+                   .number("tol_translation", opts_.tol_translation)
+                   .count("keys", keys)
+                   .count("kept", kept)
+                   .raw("tracks", fmt::format("[{}]", fmt::join(tracks, ", ")))
+                   .object() +
+               '\n';
     }
 
     reduce_options opts_;

@@ -65,6 +65,19 @@ both convert "$root/data/walk.csv" "$root/data/turntable.csv" --output-dir out -
 # Outputs large enough for the formatting threads.
 both slerp 1,0,0,0 0,0,0.6,0.8 --steps 30000 --rep euler --out-euler ZYX
 both slerp 1,0,0,0 0,0,0.6,0.8 --steps 30000 -o out.json
+# The reports: info and reduce as JSON, compare's rows and grade tables
+# against answers that fail (made once, by the old binary).
+mkdir -p "$work/answers"
+for f in "$root"/data/*; do
+    key=$work/answers/key_$(basename "$f").csv answer=$work/answers/$(basename "$f").csv
+    "$old" resample "$f" -o "$key" 2>/dev/null
+    "$old" resample "$f" --method nlerp -o "$answer" 2>/dev/null
+    both info "$f" --to json --segments
+    both reduce "$f" --tol 0.5 --report json -o out.json
+    both compare "$key" "$answer" --report json
+    both compare "$key" "$answer" "$root/data/walk.csv" "$key" --report json
+    both compare "$key" "$answer" "$root/data/walk.csv" --report csv
+done
 for f in "$root"/data/*; do
     both resample "$f" --fps 5000
     both resample "$f" --fps 3000 --rep matrix4 -o out.ndjson
