@@ -131,6 +131,9 @@ struct sample {
     /// that call: a sample stays trivially copyable, so the rows of the
     /// everyday track (which has none) cost no more to pass around.
     std::span<const double> weights = {};
+    /// A CUBICSPLINE key's tangents, where a row is that key (convert),
+    /// held as the weights are: a glTF output writes them beside it.
+    const full_spline_key* spline = nullptr;
 };
 static_assert(std::is_trivially_copyable_v<sample>);
 

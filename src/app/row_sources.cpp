@@ -34,7 +34,8 @@ void own_methods(const track_interpolation& own, Options& r) {
 }
 
 sample key_row(const key& k) {
-    return sample{k.time, k.frame, k.rotation, k.translation, k.scale, k.has_time, std::nullopt, k.weights};  // (views k's)
+    return sample{k.time,    k.frame,      k.rotation, k.translation,  k.scale,
+                  k.has_time, std::nullopt, k.weights,  k.spline.get()};  // (views k's)
 }
 
 /// A glTF sampler's method for channel values played by `m`: STEP where

@@ -155,7 +155,6 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
             rows.begin_track(name, carried, p.rows->written(settings.interpolation));
             p.rows->begin_track(name, settings.euler, settings.interpolation, carried, row);
         }
-        if (k.spline) rows.key_spline(*k.spline);
         p.rows->add(k);
         seen.add(name, settings, std::move(k));
     }
@@ -173,10 +172,7 @@ void whole_rows(const transform_plan& p, const document& doc, const document_fac
         const channels carried = d.tracks[i].carried;
         rows.begin_track(t.name, carried, p.rows->written(t.interpolation));
         p.rows->begin_track(t.name, t.euler, t.interpolation, carried, row);
-        for (const key& k : t.keys) {
-            if (k.spline) rows.key_spline(*k.spline);
-            p.rows->add(k);
-        }
+        for (const key& k : t.keys) p.rows->add(k);
         p.rows->end_track();
     }
 }

@@ -112,8 +112,6 @@ public:
     /// `written`: how the track's rows are to be interpolated, which a glTF
     /// output states (a table has no place for it).
     virtual void begin_track(const std::string& name, channels carried, const track_interpolation& written) = 0;
-    /// convert's CUBICSPLINE key, before its row: what a glTF output keeps of it (a table, nothing).
-    virtual void key_spline(const full_spline_key&) {}
     virtual void row(const sample& s) = 0;
     /// Closes the document and puts out what is left (then commits the file).
     virtual void finish() = 0;

@@ -52,6 +52,7 @@ public:
             return;
         }
         batch_.rows.push_back(s);
+        batch_.rows.back().spline = nullptr;  // (a table has no place for it, and it lives as long as this call)
         // The weights the row views live as long as this call: the batch keeps them (format() views them there).
         if (!s.weights.empty()) batch_.weights.insert(batch_.weights.end(), s.weights.begin(), s.weights.end());
         if (batch_.rows.size() == batch_rows) hand_over();

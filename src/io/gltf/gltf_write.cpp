@@ -303,27 +303,28 @@ public:
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
         tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
     }
-    void key_spline(const full_spline_key& s) override { spline_ = s; }
     void row(const sample& s) override {
         gltf_track& t = tracks_.back();
+        static const full_spline_key none{};  // the tangents of a row that is no CUBICSPLINE key: none
+        const full_spline_key& spline = s.spline ? *s.spline : none;
         t.times.push_back(s.time);
         t.rotations.push_back(s.rotation);
-        if (t.how.rotation == method::cubicspline) t.splines.push_back(spline_);
+        if (t.how.rotation == method::cubicspline) t.splines.push_back(spline);
         const auto put = [&](gltf_vectors& v, const std::optional<vec3>& value, method how, vec3 in, vec3 out) {
             if (!value) return;
             v.times.push_back(s.time);
             v.values.insert(v.values.end(), {value->x, value->y, value->z});
             if (how == method::cubicspline) v.tangents.insert(v.tangents.end(), {in.x, in.y, in.z, out.x, out.y, out.z});
         };
-        put(t.translation, s.translation, t.how.translation, spline_.translation_in, spline_.translation_out);
-        put(t.scale, s.scale, t.how.scale, spline_.scale_in, spline_.scale_out);
+        put(t.translation, s.translation, t.how.translation, spline.translation_in, spline.translation_out);
+        put(t.scale, s.scale, t.how.scale, spline.scale_in, spline.scale_out);
         if (!s.weights.empty()) {
             gltf_vectors& w = t.weights;
             w.width = s.weights.size();
             w.times.push_back(s.time);
             w.values.insert(w.values.end(), s.weights.begin(), s.weights.end());
             if (t.how.weights == method::cubicspline)
-                for (const morph_weights* tangent : {&spline_.weights_in, &spline_.weights_out})
+                for (const morph_weights* tangent : {&spline.weights_in, &spline.weights_out})
                     for (std::size_t j = 0; j < w.width; ++j) w.tangents.push_back(j < tangent->size() ? (*tangent)[j] : 0);
         }
     }
@@ -352,7 +353,6 @@ private:
     std::shared_ptr<gltf_source> source_;
     warnings& warn_;
     std::vector<gltf_track> tracks_;
-    full_spline_key spline_;
 };
 
 }  // namespace
