@@ -58,11 +58,6 @@ class frame_rows final : public row_source {
 public:
     /// `method_given`: --method overrides the interpolation a file states.
     frame_rows(const resample_options& r, bool method_given) : opts_(r), method_given_(method_given) {}
-    std::unique_ptr<row_source> another() const override { return std::make_unique<frame_rows>(opts_, method_given_); }
-    std::size_t row_count(const key& first, const key& last, std::size_t) const override {
-        const auto [from, to] = frame_span(first.time, last.time, opts_);
-        return static_cast<std::size_t>(to - from + 1);
-    }
     table_info table(const document_facts& d) const override {
         table_info info;
         info.named = d.named;
@@ -128,8 +123,6 @@ private:
 /// convert: each key as it is, with its own frame or time.
 class key_rows : public row_source {
 public:
-    std::unique_ptr<row_source> another() const override { return std::make_unique<key_rows>(); }
-    std::size_t row_count(const key&, const key&, std::size_t keys) const override { return keys; }
     table_info table(const document_facts& d) const override {
         table_info info;
         info.named = d.named;
@@ -177,9 +170,6 @@ public:
     /// `gltf`: the output is a glTF file, which plays rotations LINEAR (slerp) or STEP only.
     reduced_rows(const reduce_options& r, bool method_given, bool report_json, std::string source, bool gltf)
         : opts_(r), method_given_(method_given), report_json_(report_json), source_(std::move(source)), gltf_(gltf) {}
-    std::unique_ptr<row_source> another() const override {
-        return std::make_unique<reduced_rows>(opts_, method_given_, report_json_, source_, gltf_);
-    }
     void check(const document_facts& d, warnings& warn) const override {
         key_rows::check(d, warn);
         for (const auto& t : d.tracks) {

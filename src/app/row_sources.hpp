@@ -65,10 +65,6 @@ document_facts facts_of(const document& doc);
 class row_source {
 public:
     virtual ~row_source() = default;
-    /// A row source of the same kind, for a track whose keys come between this one's.
-    virtual std::unique_ptr<row_source> another() const = 0;
-    /// How many rows a track of `keys` keys from `first` to `last` makes, which states no interpolation of its own.
-    virtual std::size_t row_count(const key& first, const key& last, std::size_t keys) const = 0;
     /// What the writer is told before the first row.
     virtual table_info table(const document_facts& d) const = 0;
     /// Checks the whole input before anything is written; warns of what it assumed.

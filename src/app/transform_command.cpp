@@ -24,7 +24,6 @@
 #include "ground/held_warnings.hpp"
 #include "ground/thread_start.hpp"
 #include "io/bvh/bvh_read.hpp"
-#include "io/bvh/bvh_write.hpp"
 #include "io/common/output.hpp"
 #include "io/document.hpp"
 #include "io/gltf/gltf_read.hpp"
@@ -75,8 +74,8 @@ write_options writing_for(const transform_plan& p, const input_source& src, cons
     w.commit.batch = p.batch;
     w.commit.follow_links = !p.flags.output_dir;
     if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = loaded_gltf(p, src, warn);
-    // A glTF output of a BVH input makes its hierarchy the nodes.
-    if (is_gltf(p.out) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);
+    // A BVH output of a BVH input keeps its hierarchy; a glTF output makes it the nodes.
+    if ((p.out == format::bvh || is_gltf(p.out)) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);
     return w;
 }
 
@@ -213,55 +212,13 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
     });
 }
 
-/// BVH to BVH: the joints' keys frame after frame, each joint's rows made
-/// by a row source of its own and written as frame lines as they come, so
-/// that memory does not grow with the take. Into a file that replaces its
-/// target at the end, in one pass; otherwise after a pass that reads every
-/// frame, so that an error never leaves part of the output behind.
-void transform_frames(const transform_plan& p, const input_source& src, std::ostream& out, warnings& warn) {
-    const auto source = read_bvh_source(*src.open(), p.reading);
-    if (!p.target || !replaced_on_commit(*p.target)) check_bvh_frames(*src.open(), p.reading);
-    const auto stream = src.open();
-    const auto reader = make_bvh_frame_reader(*stream, p.reading);
-    std::string name;
-    raw_key raw;
-    // The first frame's keys: each joint's track, and the facts the output needs first.
-    const std::size_t joints = source->joints.size();
-    std::vector<key> first;
-    document_facts d;
-    d.named = true;
-    while (first.size() < joints && reader->next(name, raw)) {
-        first.push_back(make_key(raw, reader->settings(), warn));
-        d.add(name, reader->settings(), key(first.back()));
-    }
-    for (auto& t : d.tracks) {  // the last frame's keys, as far as facts go
-        t.last.frame = static_cast<double>(source->frames - 1);
-        t.last.time = *t.last.frame / t.key_fps.value_or(default_key_fps);
-        t.keys = source->frames;
-    }
-    p.rows->check(d, warn);
-    const table_info info = p.rows->table(d);
-    bvh_output file(p.target, out, source, p.rows->row_count(d.tracks[0].first, d.tracks[0].last, source->frames),
-                    info.fps ? 1 / *info.fps : source->frame_time, writing_for(p, src, d, warn));
-    std::vector<std::unique_ptr<row_source>> rows;
-    for (std::size_t j = 0; j < joints; ++j) {
-        rows.push_back(p.rows->another());
-        rows[j]->begin_track(source->joints[j].name, source->joints[j].euler, std::nullopt, d.tracks[j].carried,
-                             [&file, j](const sample& s) { file.row(j, s); });
-        rows[j]->add(first[j]);
-    }
-    for (std::size_t n = 0; reader->next(name, raw); n = n + 1 == joints ? 0 : n + 1)
-        rows[n]->add(make_key(raw, reader->settings(), warn));
-    for (auto& r : rows) r->end_track();
-    file.finish();
-}
-
 /// resample, convert or reduce one input into the plan's file or `out`.
 void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
     warnings warn(err, src.source());
-    if (p.out == format::bvh && p.in == format::bvh) return transform_frames(p, src, out, warn);
-    if (p.target && replaced_on_commit(*p.target) && transform_in_one_pass(p, src, out, warn))
-        return p.rows->report(out, err);
+    // One pass where an error on the way leaves nothing written: into a file
+    // that replaces its target at the end, or a table written at its end.
+    const bool one_pass = (p.target && replaced_on_commit(*p.target)) || written_at_finish(p.out);
+    if (one_pass && transform_in_one_pass(p, src, out, warn)) return p.rows->report(out, err);
     p.rows->restart();
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or

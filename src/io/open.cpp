@@ -1,6 +1,7 @@
 #include "io/open.hpp"
 
 #include "io/bvh/bvh_read.hpp"
+#include "io/bvh/bvh_write.hpp"
 #include "io/csv/csv.hpp"
 #include "io/fast/read_ahead.hpp"
 #include "io/fast/row_pipeline.hpp"
@@ -90,14 +91,19 @@ std::unique_ptr<table_output> open_table(format f, const std::optional<std::stri
             for (const bvh_node& n : opts.bvh->nodes) skeleton.push_back({n.name, n.parent, n.offset, n.joint});
         return make_gltf_table(f, path, out, opts.commit, opts.gltf, std::move(skeleton), warn);
     }
-    // (BVH to BVH is written frame by frame, by bvh_output.)
-    if (f == format::bvh)
-        throw input_error(warn.source(), "BVH output needs a BVH input, whose hierarchy it keeps: expected a .bvh "
-                                         "input, or another output format");
+    if (f == format::bvh) {
+        if (!opts.bvh)
+            throw input_error(warn.source(), "BVH output needs a BVH input, whose hierarchy it keeps: expected a .bvh "
+                                             "input, or another output format");
+        // Resampled at --fps, or the input's frames as they were.
+        return std::make_unique<bvh_output>(path, out, opts.bvh, info.fps ? 1 / *info.fps : opts.bvh->frame_time, opts);
+    }
     auto table = std::make_unique<piped_table>(f, path, out, info, opts, warn);
     if (opts.euler_continuous && opts.representation == rep::euler)
         return std::make_unique<continuous_euler_table>(std::move(table), *opts.euler);
     return table;
 }
+
+bool written_at_finish(format f) { return is_gltf(f) || f == format::bvh; }
 
 }  // namespace keyrot

@@ -22,11 +22,16 @@ namespace keyrot {
 std::unique_ptr<key_reader> make_key_reader(std::istream& in, format f, const read_options& opts, warnings& warn,
                                             std::function<bool()> parse_ahead = nullptr);
 
-/// A table in format `f` into `path` (none: `out`), or a glTF file
-/// (make_gltf_table). Throws input_error for BVH, which only bvh_output
-/// writes, from BVH input. Euler output warns once about gimbal lock
+/// A table in format `f` into `path` (none: `out`), a glTF file
+/// (make_gltf_table), or a BVH file of the hierarchy in opts.bvh (throws
+/// input_error without one). Euler output warns once about gimbal lock
 /// through `warn`.
 std::unique_ptr<table_output> open_table(format f, const std::optional<std::string>& path, std::ostream& out,
                                          const table_info& info, const write_options& opts, warnings& warn);
+
+/// Whether a table of format `f` puts out nothing before finish(): glTF
+/// and BVH, whose headers need the last row. An error met while its rows
+/// come then leaves nothing behind, wherever it writes.
+bool written_at_finish(format f);
 
 }  // namespace keyrot

@@ -404,52 +404,10 @@ private:
     std::size_t joint_ = 0, column_ = 0, frame_ = 0;
 };
 
-/// A BVH file's keys frame after frame, a line at a time: memory does not
-/// grow with the take.
-class bvh_frame_keys final : public key_reader {
-public:
-    bvh_frame_keys(std::istream& in, const read_options& ro)
-        : frames_(in, ro), row_(frames_.width()), joint_(frames_.header().joints.size()) {}
-
-    bool next(std::string& track, raw_key& k) override {
-        const bvh_source& h = frames_.header();
-        if (joint_ == h.joints.size()) {
-            if (!frames_.read(row_.data())) return false;
-            joint_ = 0, column_ = 0;
-        }
-        track = h.joints[joint_].name;
-        settings_ = &frames_.settings(joint_);
-        frames_.key_of(joint_, frames_.count() - 1, frames_.line(), [&](std::size_t c) { return row_[column_ + c]; }, k);
-        column_ += h.joints[joint_].channels.size();
-        ++joint_;
-        return true;
-    }
-    bool named() const override { return true; }
-    location start() const override { return {}; }
-    const key_settings& settings() const override { return *settings_; }
-
-private:
-    bvh_frames frames_;
-    std::vector<double> row_;  // the frame line's values
-    const key_settings* settings_ = nullptr;
-    std::size_t joint_, column_ = 0;  // the next key's joint and its first value
-};
-
 }  // namespace
 
 std::unique_ptr<key_reader> make_bvh_reader(std::istream& in, const read_options& ro) {
     return std::make_unique<bvh_keys>(in, ro);
-}
-
-std::unique_ptr<key_reader> make_bvh_frame_reader(std::istream& in, const read_options& ro) {
-    return std::make_unique<bvh_frame_keys>(in, ro);
-}
-
-void check_bvh_frames(std::istream& in, const read_options& ro) {
-    bvh_frames frames(in, ro);
-    std::vector<double> row(frames.width());
-    while (frames.read(row.data())) {
-    }
 }
 
 std::shared_ptr<bvh_source> read_bvh_source(std::istream& in, const read_options& ro) {

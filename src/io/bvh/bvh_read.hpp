@@ -53,16 +53,6 @@ struct bvh_source {
 /// channels), got 68".
 std::unique_ptr<key_reader> make_bvh_reader(std::istream& in, const read_options& ro);
 
-/// The same keys frame after frame (every joint's key of a frame, then the
-/// next frame's), read a line at a time: what a BVH output of a BVH input
-/// streams.
-std::unique_ptr<key_reader> make_bvh_frame_reader(std::istream& in, const read_options& ro);
-
-/// Reads every frame line, as the readers do, and keeps none: throws what
-/// they would throw. (All a BVH file's frames can get wrong: a key of
-/// finite angles at a frame's time always makes a key.)
-void check_bvh_frames(std::istream& in, const read_options& ro);
-
 /// The hierarchy and the motion's header, without reading the frames.
 std::shared_ptr<bvh_source> read_bvh_source(std::istream& in, const read_options& ro);
 

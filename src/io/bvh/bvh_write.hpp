@@ -2,14 +2,14 @@
 // BVH output: the hierarchy of the BVH input kept as it was, then the rows
 // of its joints' tracks as frame lines, each joint's angles in its own
 // channel order.
-#include <deque>
+#include <array>
 #include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
-#include <vector>
 
 #include "io/bvh/bvh_read.hpp"
+#include "io/bvh/track_store.hpp"
 #include "io/common/interface.hpp"
 
 namespace keyrot {
@@ -18,39 +18,35 @@ namespace detail {
 class chunked_output;
 }
 
-/// A BVH file of `source`'s hierarchy, written frame by frame into `target`
-/// (replaced at finish()) or `out`: 'Frames: frames', 'Frame Time:
-/// frame_time', then a line per frame once every joint's row of it has
-/// come; Euler angles continuous from frame to frame (continuous_euler).
-/// Rows of one joint come in order, the joints' rows in any interleaving.
-class bvh_output {
+/// A BVH file of `source`'s hierarchy, a table like the others: its
+/// tracks, one per joint in the hierarchy's order, come track after track,
+/// and at finish() it writes 'Frames: N', 'Frame Time: frame_time', then
+/// a line per frame (each joint's row of it) into `target` (replaced at
+/// finish()) or `out`. Euler angles are continuous from frame to frame
+/// (continuous_euler). The rows wait in a track_store meanwhile, so memory
+/// does not grow with the take.
+class bvh_output final : public table_output {
 public:
     bvh_output(const std::optional<std::string>& target, std::ostream& out, std::shared_ptr<const bvh_source> source,
-               std::size_t frames, double frame_time, const write_options& opts);
+               double frame_time, const write_options& opts);
     bvh_output(const bvh_output&) = delete;
     bvh_output& operator=(const bvh_output&) = delete;
-    ~bvh_output();
-    /// Row `s` of the track of joint `joint` (an index into source->joints).
-    void row(std::size_t joint, const sample& s);
-    /// Throws keyrot::error unless the rows made exactly the frames stated.
-    void finish();
+    ~bvh_output() override;
+    /// The next joint's track. Throws keyrot::error past the last joint.
+    void begin_track(const std::string& name, channels carried, const track_interpolation& written) override;
+    void row(const sample& s) override;
+    /// Throws keyrot::error unless every joint has a track, and the
+    /// tracks the same frames.
+    void finish() override;
 
 private:
-    /// What BVH keeps of a row.
-    struct frame_row {
-        double time;
-        quat rotation;
-        vec3 translation;  // zero where the row has none
-    };
-    void write_frame();
-
     std::unique_ptr<detail::chunked_output> sink_;
     std::shared_ptr<const bvh_source> source_;
-    std::size_t frames_, written_ = 0;
+    double frame_time_;
     write_options opts_;
-    std::vector<std::deque<frame_row>> waiting_;   // per joint, the rows of frames not yet written
-    std::size_t complete_ = 0;                     // joints with a row waiting
-    std::vector<std::array<double, 3>> previous_;  // per joint, the last frame's angles
+    /// Per row: its time, the joint's Euler angles (radians), its translation.
+    track_store rows_{7};
+    std::array<double, 3> previous_{};  // the current joint's last angles
 };
 
 }  // namespace keyrot

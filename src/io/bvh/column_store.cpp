@@ -4,25 +4,12 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <type_traits>
-
-#include <unistd.h>
 
 #include "ground/text.hpp"
 #include "io/common/spool.hpp"
 #include "keyrot/error.hpp"
 
 namespace keyrot {
-namespace {
-
-/// `count` doubles at double `start` of `file`, by pread or pwrite, whole.
-template <class Io, class Value>
-bool transfer(Io io, std::FILE* file, Value* values, std::size_t count, std::size_t start) {
-    auto* bytes = reinterpret_cast<std::conditional_t<std::is_const_v<Value>, const char*, char*>>(values);
-    return transfer_whole(io, ::fileno(file), bytes, count * sizeof(double), static_cast<off_t>(start * sizeof(double)));
-}
-
-}  // namespace
 
 column_store::column_store(std::size_t width)
     : width_(width),
@@ -42,7 +29,7 @@ void column_store::flush() {
         return;
     }
     const std::size_t start = (frames_ / block_ - 1) * width_ * block_;
-    if (!transfer(::pwrite, file_, filling_.data(), filling_.size(), start))
+    if (!write_doubles(file_, filling_.data(), filling_.size(), start))
         throw error(fmt::format("cannot store a BVH file's frames in a temporary file: {}", errno_text()));
 }
 
@@ -50,7 +37,7 @@ void column_store::load(std::size_t c, std::size_t block) {
     double* into = cache_.data() + c * block_;
     const std::size_t start = (block * width_ + c) * block_;
     if (!file_) std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(start), block_, into);
-    else if (!transfer(::pread, file_, into, block_, start))
+    else if (!read_doubles(file_, into, block_, start))
         throw error(fmt::format("cannot read a BVH file's frames back from a temporary file: {}", errno_text()));
     cached_[c] = block;
 }

@@ -27,13 +27,14 @@ bool whole(Io io, int fd, Bytes bytes, std::size_t size, off_t offset) {
 
 }  // namespace
 
-bool transfer_whole(ssize_t (*io)(int, void*, std::size_t, off_t), int fd, char* bytes, std::size_t size, off_t offset) {
-    return whole(io, fd, bytes, size, offset);
+bool read_doubles(std::FILE* file, double* values, std::size_t count, std::size_t start) {
+    return whole(::pread, ::fileno(file), reinterpret_cast<char*>(values), count * sizeof(double),
+                 static_cast<off_t>(start * sizeof(double)));
 }
 
-bool transfer_whole(ssize_t (*io)(int, const void*, std::size_t, off_t), int fd, const char* bytes, std::size_t size,
-                    off_t offset) {
-    return whole(io, fd, bytes, size, offset);
+bool write_doubles(std::FILE* file, const double* values, std::size_t count, std::size_t start) {
+    return whole(::pwrite, ::fileno(file), reinterpret_cast<const char*>(values), count * sizeof(double),
+                 static_cast<off_t>(start * sizeof(double)));
 }
 
 byte_spool::byte_spool() : file_(std::tmpfile()) {}
@@ -50,7 +51,7 @@ void byte_spool::append(std::string_view bytes) {
 
 void byte_spool::flush() {
     const auto at = static_cast<off_t>(size_ - block_.size());
-    if (!transfer_whole(::pwrite, ::fileno(file_), block_.data(), block_.size(), at))
+    if (!whole(::pwrite, ::fileno(file_), block_.data(), block_.size(), at))
         throw error(fmt::format("cannot set output aside in a temporary file: {}", errno_text()));
     block_.clear();
 }
@@ -60,7 +61,7 @@ void byte_spool::each_block(const std::function<void(std::string_view)>& f) {
     std::string read(std::min(in_file, block_bytes), '\0');
     for (std::size_t at = 0; at < in_file; at += read.size()) {
         read.resize(std::min(block_bytes, in_file - at));
-        if (!transfer_whole(::pread, ::fileno(file_), read.data(), read.size(), static_cast<off_t>(at)))
+        if (!whole(::pread, ::fileno(file_), read.data(), read.size(), static_cast<off_t>(at)))
             throw error(fmt::format("cannot read back a temporary file: {}", errno_text()));
         f(read);
     }

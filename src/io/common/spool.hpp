@@ -1,9 +1,7 @@
 #pragma once
 // Bytes set aside in a temporary file, so that memory does not grow with
 // them: an output's data gathered before the header that must come first,
-// a take's columns read back one at a time.
-#include <sys/types.h>
-
+// a take's columns, a BVH output's rows.
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -11,11 +9,10 @@
 
 namespace keyrot {
 
-/// pread or pwrite of `size` bytes at `offset` of `fd`, whole (again after
-/// a signal, and after a short count). False on an error (errno says which).
-bool transfer_whole(ssize_t (*io)(int, void*, std::size_t, off_t), int fd, char* bytes, std::size_t size, off_t offset);
-bool transfer_whole(ssize_t (*io)(int, const void*, std::size_t, off_t), int fd, const char* bytes, std::size_t size,
-                    off_t offset);
+/// `count` doubles at double index `start` of `file`, read or written
+/// whole. False on an error (errno says which).
+bool read_doubles(std::FILE* file, double* values, std::size_t count, std::size_t start);
+bool write_doubles(std::FILE* file, const double* values, std::size_t count, std::size_t start);
 
 /// Bytes appended in order and read back in order: in a temporary file, a
 /// block at a time (in memory where the system gives no temporary file).

@@ -1,6 +1,6 @@
-// The two readers of a BVH file give the same keys, joint after joint or
-// frame after frame, and stop at the same error; bvh_output writes a frame
-// once every joint has it.
+// The BVH reader gives a take's keys joint after joint, and stops at the
+// first error; bvh_output takes them back track after track and writes a
+// line per frame; track_store holds the rows between.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 
 #include "io/bvh/bvh_read.hpp"
 #include "io/bvh/bvh_write.hpp"
+#include "io/bvh/track_store.hpp"
 #include "reading.hpp"
 
 namespace keyrot::test {
@@ -34,12 +35,11 @@ std::shared_ptr<bvh_source> take_source() {
     return read_bvh_source(in, take_options());
 }
 
-/// Each track's keys as the reader made by `make` gives them.
-template <typename Make>
-std::pair<std::map<std::string, std::vector<raw_key>>, std::string> by_track(
-    const std::string& text, Make make, std::vector<std::string>* order = nullptr) {
+/// Each track's keys as the reader gives them, and the error it stopped at.
+std::pair<std::map<std::string, std::vector<raw_key>>, std::string> by_track(const std::string& text,
+                                                                             std::vector<std::string>* order = nullptr) {
     std::istringstream in(text);
-    const auto reader = make(in, take_options());
+    const auto reader = make_bvh_reader(in, take_options());
     const reading_result r = read_all(*reader);
     std::map<std::string, std::vector<raw_key>> tracks;
     for (const auto& [name, k] : r.keys) {
@@ -49,36 +49,24 @@ std::pair<std::map<std::string, std::vector<raw_key>>, std::string> by_track(
     return {tracks, r.error};
 }
 
-void check_same(const raw_key& a, const raw_key& b) {
-    CHECK(a.at.line == b.at.line);
-    CHECK(a.frame == b.frame);
-    CHECK(a.kind == b.kind);
-    CHECK(a.values == b.values);
-    CHECK(a.translation.has_value() == b.translation.has_value());
-    if (a.translation && b.translation) {
-        CHECK(a.translation->x == b.translation->x);
-        CHECK(a.translation->z == b.translation->z);
-    }
-}
-
 }  // namespace
 
-TEST_CASE("BVH: the frame reader gives the column reader's keys, frame after frame") {
+TEST_CASE("BVH: a take's keys joint after joint, each frame's values in its joint's channel order") {
     std::vector<std::string> order;
-    const auto [columns, none] = by_track(take, make_bvh_reader);
-    const auto [frames, also_none] = by_track(take, make_bvh_frame_reader, &order);
-    CHECK(none.empty());
-    CHECK(also_none.empty());
-    CHECK(order == std::vector<std::string>{"Hips", "Leg", "Hips", "Leg", "Hips", "Leg"});
-    REQUIRE(columns.size() == 2);
-    for (const auto& [name, keys] : columns) {
-        REQUIRE(frames.at(name).size() == 3);
-        for (std::size_t i = 0; i < keys.size(); ++i) check_same(keys[i], frames.at(name)[i]);
-    }
-    const raw_key& leg = frames.at("Leg")[2];
+    const auto [tracks, error] = by_track(take, &order);
+    CHECK(error.empty());
+    CHECK(order == std::vector<std::string>{"Hips", "Hips", "Hips", "Leg", "Leg", "Leg"});
+    REQUIRE(tracks.size() == 2);
+    const raw_key& leg = tracks.at("Leg")[2];
     CHECK(leg.at.line == 22);     // after the blank line
+    CHECK(leg.frame == 2);
+    CHECK(leg.kind == rep::euler);
     CHECK(leg.values[0] == -40);  // Yrotation first: the sequence YXZ
-    CHECK(frames.at("Hips")[1].translation->y == 2);
+    CHECK(leg.values[2] == -60);
+    CHECK(!leg.translation);      // no position channels
+    const raw_key& hips = tracks.at("Hips")[1];
+    CHECK(hips.translation->y == 2);
+    CHECK(hips.values[0] == 10);  // Zrotation first: ZXY
 }
 
 TEST_CASE("BVH: joints of one name are tracks '<name>', '<name>.2', '<name>.3'") {
@@ -92,21 +80,17 @@ TEST_CASE("BVH: joints of one name are tracks '<name>', '<name>.2', '<name>.3'")
     const std::string frames = "0 0 0 0 0 0 0 0 0\n1 2 3 10 20 30 40 50 60\n\n4 5 6 -10 -20 -30 -40 -50 -60\n";
     text.replace(text.find(frames), frames.size(), "0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n1 2 3 10 20 30 40 50 60 1 2 3 7 4 5 6\n\n"
                                                   "4 5 6 -10 -20 -30 -40 -50 -60 1 2 3 7 4 5 6\n");
-    for (const bool frame_major : {false, true}) {
-        CAPTURE(frame_major);
-        std::vector<std::string> order;
-        const auto [tracks, error] = frame_major ? by_track(text, make_bvh_frame_reader, &order)
-                                                 : by_track(text, make_bvh_reader, &order);
-        CHECK(error.empty());
-        std::vector<std::string> names;  // in order of first appearance
-        for (const std::string& name : order)
-            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
-        CHECK(names == std::vector<std::string>{"Hips", "Leg", "Leg.2", "Leg.2.2", "Leg.3"});
-        CHECK(tracks.size() == 5);
-    }
+    std::vector<std::string> order;
+    const auto [tracks, error] = by_track(text, &order);
+    CHECK(error.empty());
+    std::vector<std::string> names;  // in order of first appearance
+    for (const std::string& name : order)
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    CHECK(names == std::vector<std::string>{"Hips", "Leg", "Leg.2", "Leg.2.2", "Leg.3"});
+    CHECK(tracks.size() == 5);
 }
 
-TEST_CASE("BVH: both readers stop at the same error, after the same keys") {
+TEST_CASE("BVH: a take that does not hold the frames its header states is an error naming the line") {
     for (const auto& bad : std::vector<std::pair<std::string, std::string>>{
              {take.substr(0, take.size() - 4) + "\n",
               "take.bvh:22: expected 9 values (the hierarchy's channels), got 8"},
@@ -115,31 +99,30 @@ TEST_CASE("BVH: both readers stop at the same error, after the same keys") {
         const std::string& text = bad.first;
         const std::string& message = bad.second;  // (not a structured binding: clang's lambdas in the checks)
         CAPTURE(message);
-        const auto columns = by_track(text, make_bvh_reader).second;
-        const auto frames = by_track(text, make_bvh_frame_reader).second;
-        CHECK(columns.find(message) != std::string::npos);
-        CHECK(frames == columns);
-        std::istringstream in(text);
-        CHECK_THROWS_WITH_AS(check_bvh_frames(in, take_options()), doctest::Contains(message.c_str()), input_error);
+        CHECK(by_track(text).second.find(message) != std::string::npos);
     }
 }
 
-TEST_CASE("bvh_output: a frame line once every joint has its row, in its channel order") {
+/// A BVH output row: time, rotation, position.
+sample bvh_row(double time, quat q, vec3 position) {
+    sample s;
+    s.time = time;
+    s.rotation = q;
+    s.translation = position;
+    return s;
+}
+
+TEST_CASE("bvh_output: tracks one after another, written as a line per frame in each joint's channel order") {
     std::ostringstream out;
-    bvh_output file(std::nullopt, out, take_source(), 2, 0.5, {});
-    const auto row = [](double time, quat q, vec3 position) {
-        sample s;
-        s.time = time;
-        s.rotation = q;
-        s.translation = position;
-        return s;
-    };
+    bvh_output file(std::nullopt, out, take_source(), 0.5, {});
     const quat z90{std::sqrt(0.5), 0, 0, std::sqrt(0.5)};  // 90 degrees about z
-    // Hips runs a frame ahead of Leg: nothing is written before Leg's frame 0.
-    file.row(0, row(0, z90, {1, 2, 3}));
-    file.row(0, row(0.5, quat{1, 0, 0, 0}, {4, 5, 6}));
-    file.row(1, row(0, z90, {}));
-    file.row(1, row(0.5, -z90, {}));
+    file.begin_track("Hips", {true, false, 0}, {});
+    file.row(bvh_row(0, z90, {1, 2, 3}));
+    file.row(bvh_row(0.5, quat{1, 0, 0, 0}, {4, 5, 6}));
+    file.begin_track("Leg", {}, {});
+    file.row(bvh_row(0, z90, {}));
+    file.row(bvh_row(0.5, -z90, {}));
+    CHECK(out.str().empty());  // nothing before the last joint's rows
     file.finish();
     const std::string text = out.str();
     REQUIRE(text.rfind("MOTION\nFrames: 2\nFrame Time: 0.5\n") != std::string::npos);
@@ -149,17 +132,46 @@ TEST_CASE("bvh_output: a frame line once every joint has its row, in its channel
     CHECK(text.substr(0, text.find("MOTION")) == take.substr(0, take.find("MOTION")));
 }
 
-TEST_CASE("bvh_output: rows that do not make the frames stated are an error") {
-    std::ostringstream out;
-    bvh_output file(std::nullopt, out, take_source(), 2, 0.5, {});
-    sample s;
-    file.row(0, s);
-    file.row(1, s);
-    CHECK_THROWS_AS(file.finish(), error);
-    sample later;
-    later.time = 1;
-    file.row(0, s);
-    CHECK_THROWS_WITH_AS(file.row(1, later), doctest::Contains("expected the same frames for every joint"), error);
+TEST_CASE("bvh_output: tracks that do not make the same frames for every joint are an error") {
+    const auto written = [](const std::vector<std::vector<sample>>& tracks) {
+        std::ostringstream out;
+        bvh_output file(std::nullopt, out, take_source(), 0.5, {});
+        for (const auto& rows : tracks) {
+            file.begin_track("", {}, {});
+            for (const sample& r : rows) file.row(r);
+        }
+        file.finish();
+        return out.str();
+    };
+    const sample at0 = bvh_row(0, {}, {}), at1 = bvh_row(1, {}, {});
+    CHECK(written({{at0, at1}, {at0, at1}}).find("Frames: 2") != std::string::npos);
+    CHECK_THROWS_WITH_AS(written({{at0, at1}, {at0}}), doctest::Contains("'Leg' has 1 frames where 'Hips' has 2"), error);
+    CHECK_THROWS_WITH_AS(written({{at0, at1}, {at0, at0}}), doctest::Contains("expected the same frames for every joint"),
+                         error);
+    CHECK_THROWS_WITH_AS(written({{at0}}), doctest::Contains("tracks of 1 joints: expected the hierarchy's 2"), error);
+    CHECK_THROWS_WITH_AS(written({{at0}, {at0}, {at0}}), doctest::Contains("expected one track per joint"), error);
+}
+
+TEST_CASE("track_store: rows pushed track after track come back frame after frame, across blocks") {
+    // Three tracks of 2,500 rows: blocks of rows in the file, and the one being filled.
+    track_store store(2);
+    const std::size_t tracks = 3, rows = 2500;
+    for (std::size_t t = 0; t < tracks; ++t) {
+        store.begin_track();
+        for (std::size_t i = 0; i < rows; ++i) {
+            const double row[2] = {static_cast<double>(t), static_cast<double>(i)};
+            store.push(row);
+        }
+    }
+    REQUIRE(store.tracks() == tracks);
+    bool same = true;
+    for (std::size_t i = 0; i < rows; ++i)
+        for (std::size_t t = 0; t < tracks; ++t) {
+            REQUIRE(store.rows(t) == rows);
+            const double* r = store.at(t, i);
+            same = same && r[0] == static_cast<double>(t) && r[1] == static_cast<double>(i);
+        }
+    CHECK(same);
 }
 
 }  // namespace keyrot::test
