@@ -18,7 +18,8 @@ namespace keyrot {
 /// check_method(method::euler, std::nullopt) says "method euler needs an Euler sequence".
 void check_method(method m, const std::optional<euler_seq>& seq);
 
-/// glTF's cubic Hermite spline between values v0 at s = 0 and v1 at s = 1,
+/// glTF's cubic Hermite spline (the glTF 2.0 specification's CUBICSPLINE
+/// interpolation) between values v0 at s = 0 and v1 at s = 1,
 /// with tangents b0 (v0's out-tangent) and a1 (v1's in-tangent) per second,
 /// over a key interval of `seconds`: (2s^3 - 3s^2 + 1) v0 + seconds (s^3 -
 /// 2s^2 + s) b0 + (-2s^3 + 3s^2) v1 + seconds (s^3 - s^2) a1, component-wise.
@@ -31,7 +32,8 @@ void hermite(std::span<const double> v0, std::span<const double> b0, std::span<c
              std::span<const double> a1, double seconds, double s, std::span<double> out) noexcept;
 
 /// Spherical linear interpolation from a to b, prepared once per pair of
-/// keys: Szeliski's Algorithm 2.1 with the relative rotation's axis and
+/// keys: Algorithm 2.1 of Szeliski's *Computer Vision: Algorithms and
+/// Applications* (2nd ed., 2022), with the relative rotation's axis and
 /// angle lifted out of the per-frame loop, the angle kept to twice the
 /// working precision so that the result is within about 2x of correctly
 /// rounded even on the long way round.
@@ -55,7 +57,8 @@ quat slerp(quat a, quat b, double h) noexcept;
 /// is zero (b = -a, h = 1/2) the rotation is a's. nlerp(1, 90deg@z, 0.5) =
 /// 45deg@z, as slerp at the midpoint; elsewhere it runs ahead or behind.
 quat nlerp(quat a, quat b, double h) noexcept;
-/// Shoemake's control point s_i = q_i exp(-(log(q_i^-1 q_next) + log(q_i^-1 q_prev)) / 4).
+/// Shoemake's control point (Animating Rotation with Quaternion Curves,
+/// SIGGRAPH 1985): s_i = q_i exp(-(log(q_i^-1 q_next) + log(q_i^-1 q_prev)) / 4).
 /// Keys evenly spaced on one great circle give s_i = q_i (squad is then slerp).
 quat squad_control(quat prev, quat cur, quat next) noexcept;
 

@@ -116,24 +116,18 @@ struct channels {
 /// The channels key `k` carries.
 inline channels channels_of(const key& k) { return {k.translation.has_value(), k.scale.has_value(), k.weights.size()}; }
 
-/// One output row, what the sampler hands the writers: a resampled frame
-/// (frame = k) or a converted key.
+/// A track's value at a time: what the resampler makes of its keys (frame
+/// k), or a key as it is.
 struct sample {
     double time = 0;
     std::optional<double> frame;
     quat rotation;
     std::optional<vec3> translation;
     std::optional<vec3> scale = std::nullopt;
-    bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
-    /// Euler output with --euler-continuous: the angles to write (radians).
-    std::optional<std::array<double, 3>> euler = std::nullopt;
-    /// The morph weights, held by whoever hands the row over, valid during
-    /// that call: a sample stays trivially copyable, so the rows of the
-    /// everyday track (which has none) cost no more to pass around.
+    /// The morph weights, held by whoever hands the sample over, valid
+    /// during that call: a sample stays trivially copyable, so the frames
+    /// of the everyday track (which has none) cost no more to pass around.
     std::span<const double> weights = {};
-    /// A CUBICSPLINE key's tangents, where a row is that key (convert),
-    /// held as the weights are: a glTF output writes them beside it.
-    const full_spline_key* spline = nullptr;
 };
 static_assert(std::is_trivially_copyable_v<sample>);
 

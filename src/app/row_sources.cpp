@@ -33,9 +33,11 @@ void own_methods(const track_interpolation& own, Options& r) {
     r.how = own.rotation, r.translation_how = own.translation, r.scale_how = own.scale, r.weights_how = own.weights;
 }
 
-sample key_row(const key& k) {
-    return sample{k.time,    k.frame,      k.rotation, k.translation,  k.scale,
-                  k.has_time, std::nullopt, k.weights,  k.spline.get()};  // (views k's)
+table_row key_row(const key& k) {
+    return table_row{{k.time, k.frame, k.rotation, k.translation, k.scale, k.weights},  // (views k's)
+                     k.has_time,
+                     std::nullopt,
+                     k.spline.get()};
 }
 
 /// A glTF sampler's method for channel values played by `m`: STEP where
@@ -99,8 +101,8 @@ public:
                 linear_or_step(r.scale_how.value_or(r.how)), linear_or_step(r.weights_how.value_or(r.how))};
     }
     void begin_track(const std::string&, const std::optional<euler_seq>& euler,
-                     const std::optional<track_interpolation>& own, channels carried, frame_sink row) override {
-        resampler_.emplace(of(own), euler, carried, std::move(row));
+                     const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
+        resampler_.emplace(of(own), euler, carried, [row = std::move(row)](const sample& s) { row(table_row{s}); });
     }
     void add(const key& k) override { resampler_->add(k); }
     void end_track() override { resampler_->finish(); }
@@ -152,14 +154,14 @@ public:
         return own.value_or(track_interpolation{});  // (its time_rounding is not written)
     }
     void begin_track(const std::string&, const std::optional<euler_seq>&, const std::optional<track_interpolation>&,
-                     channels, frame_sink row) override {
+                     channels, row_sink row) override {
         row_ = std::move(row);
     }
     void add(const key& k) override { row_(key_row(k)); }
     void end_track() override {}
 
 protected:
-    frame_sink row_;
+    row_sink row_;
 };
 
 /// reduce: the fewest of each track's keys that replay within tolerance
@@ -194,12 +196,12 @@ public:
                 linear_or_step(r.weights_how.value_or(r.how))};
     }
     void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
-                     const std::optional<track_interpolation>& own, channels carried, frame_sink row) override {
+                     const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
         key_rows::begin_track(name, euler, own, carried, std::move(row));
         name_ = name;
         // A kept key goes out as it came in: a quaternion as given, not normalised.
         reducer_.emplace(of(own), euler, source_, [this](const key& k) {
-            sample kept = key_row(k);
+            table_row kept = key_row(k);
             kept.rotation = k.given_quat.value_or(k.rotation);
             row_(kept);
         });

@@ -60,6 +60,9 @@ struct document_facts {
 /// The facts of a document read whole.
 document_facts facts_of(const document& doc);
 
+/// Where a row source puts a track's rows.
+using row_sink = std::function<void(const table_row&)>;
+
 /// What makes a track's rows from its keys, chosen once per input:
 /// resample's frame grid, or convert's keys as they are.
 class row_source {
@@ -75,7 +78,7 @@ public:
     virtual track_interpolation written(const std::optional<track_interpolation>& own) const = 0;
     /// Track `name` begins (`own`: the interpolation its file states): its rows go to `row`.
     virtual void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
-                             const std::optional<track_interpolation>& own, channels carried, frame_sink row) = 0;
+                             const std::optional<track_interpolation>& own, channels carried, row_sink row) = 0;
     virtual void add(const key& k) = 0;
     virtual void end_track() = 0;
     /// The rows made so far do not count: the input is read again.

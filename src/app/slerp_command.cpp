@@ -86,7 +86,7 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     table->begin_track("", channels{}, track_interpolation{});
     const auto row = [&](double h) {
         const quat q = h == 0 ? curve.at_key(0) : h == 1 ? curve.at_key(1) : curve.at(0, h);
-        table->row(sample{h, std::nullopt, q, std::nullopt});
+        table->row(table_row{{h, std::nullopt, q, std::nullopt}});
     };
     for (double h : o.ts) row(h);
     if (o.steps)

@@ -42,7 +42,7 @@ public:
     void begin_track(const std::string& name, channels carried, const track_interpolation&) override {
         rows_.begin_track(name, carried);
     }
-    void row(const sample& s) override { rows_.row(s); }
+    void row(const table_row& s) override { rows_.row(s); }
     void finish() override {
         rows_.finish();
         writer_->finish();
@@ -66,8 +66,8 @@ public:
         previous_.reset();
         rows_->begin_track(name, carried, written);
     }
-    void row(const sample& s) override {
-        sample r = s;
+    void row(const table_row& s) override {
+        table_row r = s;
         r.euler = previous_ ? continuous_euler(s.rotation, seq_, *previous_) : to_euler(s.rotation, seq_).angles;
         previous_ = r.euler;
         rows_->row(r);

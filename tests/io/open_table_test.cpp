@@ -41,7 +41,7 @@ std::string direct(format f, const table_info& info, const write_options& w, con
     const auto writer = test::make_writer(f, out, info, w, warn);
     for (std::size_t t = 0; t < tracks.size(); ++t) {
         writer->begin_track("track " + std::to_string(t), channels{tracks[t].front().translation.has_value(), tracks[t].front().scale.has_value()});
-        for (const sample& s : tracks[t]) writer->row(s);
+        for (const sample& s : tracks[t]) writer->row(table_row{s});
     }
     writer->finish();
     return out;
@@ -54,7 +54,7 @@ std::string through_table(format f, const std::optional<std::string>& path, cons
     const auto table = open_table(f, path, out, info, w, warn);
     for (std::size_t t = 0; t < tracks.size(); ++t) {
         table->begin_track("track " + std::to_string(t), channels{tracks[t].front().translation.has_value(), tracks[t].front().scale.has_value()}, track_interpolation{});
-        for (const sample& s : tracks[t]) table->row(s);
+        for (const sample& s : tracks[t]) table->row(table_row{s});
     }
     table->finish();
     return out.str();
@@ -95,7 +95,7 @@ TEST_CASE("open_table: a table never finished leaves no file, and its file is no
         const auto table = open_table(format::csv, path, out, table_info{}, write_options{}, warn);
         table->begin_track("", channels{}, track_interpolation{});
         const auto tracks = tracks_of(2, 50000);
-        for (const sample& row : tracks[1]) table->row(row);  // (track 1: no translations)
+        for (const sample& row : tracks[1]) table->row(table_row{row});  // (track 1: no translations)
     }  // an error before finish(): the table goes
     CHECK(s.read(path) == "before\n");
     CHECK(std::distance(std::filesystem::directory_iterator(s.dir), {}) == 1);

@@ -17,7 +17,7 @@ using keyrot::test::write;
 
 TEST_CASE("writers: CSV, JSON and NDJSON tables") {
     const double s = std::sqrt(0.5);
-    const std::vector<sample> rows = {{0, 0.0, quat{}, vec3{1, 2, 3}}, {0.5, 12.0, quat{s, 0, 0, s}, vec3{0, 0, -1}}};
+    const std::vector<table_row> rows = {{{0, 0.0, quat{}, vec3{1, 2, 3}}}, {{0.5, 12.0, quat{s, 0, 0, s}, vec3{0, 0, -1}}}};
     table_info info;
     info.carried.translation = true;
     info.fps = 24;
@@ -42,7 +42,7 @@ TEST_CASE("writers: CSV, JSON and NDJSON tables") {
 }
 
 TEST_CASE("a settings line only where keyrot would otherwise misread the rows") {
-    const std::vector<sample> rows = {{0.5, 12.0, quat{}, std::nullopt}};
+    const std::vector<table_row> rows = {{{0.5, 12.0, quat{}, std::nullopt}}};
     table_info frames;  // resample's: frames with their times
     frames.fps = 30;
     frames.method = "slerp";
@@ -53,7 +53,7 @@ TEST_CASE("a settings line only where keyrot would otherwise misread the rows") 
     keys.counted = true;
     write_options w;
     w.representation = rep::rotvec;
-    const std::vector<sample> counted_rows = {{0.5, 12.0, quat{}, std::nullopt, std::nullopt, false}};
+    const std::vector<table_row> counted_rows = {{{0.5, 12.0, quat{}, std::nullopt}, false}};
     const auto first_line = [&](format f, const table_info& info) {
         const std::string text = write(f, info, w, info.counted ? counted_rows : rows);
         return text.substr(0, text.find('\n'));
@@ -91,8 +91,8 @@ TEST_CASE("a settings line only where keyrot would otherwise misread the rows") 
 
 TEST_CASE("keyrot reads what it writes, in every format and representation") {
     keyrot::test::random_rotations rng(77);
-    std::vector<sample> rows;
-    for (int i = 0; i < 5; ++i) rows.push_back({i / 24.0, static_cast<double>(i), rng.next(), vec3{0.5 * i, 1, 2}});
+    std::vector<table_row> rows;
+    for (int i = 0; i < 5; ++i) rows.push_back({{i / 24.0, static_cast<double>(i), rng.next(), vec3{0.5 * i, 1, 2}}});
     table_info info;
     info.carried.translation = true;
     info.fps = 24;

@@ -116,14 +116,14 @@ inline std::unique_ptr<table_writer> make_writer(format f, std::string& out, con
     return make_json_writer(out, info, w, warn, f == format::ndjson);
 }
 
-inline std::string write(format f, const table_info& info, const write_options& w, const std::vector<sample>& rows,
+inline std::string write(format f, const table_info& info, const write_options& w, const std::vector<table_row>& rows,
                          const std::string& track = "") {
     std::string out;
     std::ostringstream err;
     warnings warn(err, "in");
     auto writer = make_writer(f, out, info, w, warn);
     writer->begin_track(track, channels{rows.front().translation.has_value(), rows.front().scale.has_value()});
-    for (const sample& s : rows) writer->row(s);
+    for (const table_row& s : rows) writer->row(s);
     writer->finish();
     return out;
 }

@@ -23,7 +23,7 @@ void bvh_output::begin_track(const std::string& name, channels, const track_inte
     rows_.begin_track();
 }
 
-void bvh_output::row(const sample& s) {
+void bvh_output::row(const table_row& s) {
     const euler_seq& seq = source_->joints[rows_.tracks() - 1].euler;
     const bool first = rows_.rows(rows_.tracks() - 1) == 0;
     previous_ = first ? to_euler(s.rotation, seq).angles : continuous_euler(s.rotation, seq, previous_);

@@ -34,7 +34,7 @@ public:
     ~bvh_output() override;
     /// The next joint's track. Throws keyrot::error past the last joint.
     void begin_track(const std::string& name, channels carried, const track_interpolation& written) override;
-    void row(const sample& s) override;
+    void row(const table_row& s) override;
     /// Throws keyrot::error unless every joint has a track, and the
     /// tracks the same frames.
     void finish() override;

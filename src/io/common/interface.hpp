@@ -106,13 +106,25 @@ struct table_info {
 /// stream. begin_track comes before each track's rows (also for a single
 /// unnamed track). Large outputs are formatted on other threads and written
 /// in chunks as they fill.
+/// One output row: a sample (a resampled frame, or a key as it is), and
+/// what only the writers need of it.
+struct table_row : sample {
+    bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
+    /// Euler output with --euler-continuous: the angles to write (radians).
+    std::optional<std::array<double, 3>> euler = std::nullopt;
+    /// A CUBICSPLINE key's tangents, where the row is that key (convert),
+    /// held as the weights are: a glTF output writes them beside it.
+    const full_spline_key* spline = nullptr;
+};
+static_assert(std::is_trivially_copyable_v<table_row>);
+
 class table_output {
 public:
     virtual ~table_output() = default;
     /// `written`: how the track's rows are to be interpolated, which a glTF
     /// output states (a table has no place for it).
     virtual void begin_track(const std::string& name, channels carried, const track_interpolation& written) = 0;
-    virtual void row(const sample& s) = 0;
+    virtual void row(const table_row& s) = 0;
     /// Closes the document and puts out what is left (then commits the file).
     virtual void finish() = 0;
 };

@@ -9,7 +9,7 @@
 
 namespace keyrot {
 
-rotation_values row_values(const sample& s, const write_options& opts, warnings& warn) {
+rotation_values row_values(const table_row& s, const write_options& opts, warnings& warn) {
     const rotation_values r = values_of(s.rotation, s.translation, opts, s.euler);
     if (r.gimbal_lock)
         warn.once("gimbal", fmt::format("gimbal lock in Euler sequence {}: the third angle is set to 0", opts.euler->name));

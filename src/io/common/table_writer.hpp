@@ -14,7 +14,7 @@ class table_writer {
 public:
     virtual ~table_writer() = default;
     virtual void begin_track(const std::string& name, channels carried) = 0;
-    virtual void row(const sample& s) = 0;
+    virtual void row(const table_row& s) = 0;
     virtual void finish() = 0;
     /// For formatting rows on several threads: a writer of the same rows into
     /// `out` that writes nothing else (no header, nothing at finish), or
@@ -23,7 +23,7 @@ public:
 };
 
 /// A row's rotation values; Euler output warns once about gimbal lock.
-rotation_values row_values(const sample& s, const write_options& opts, warnings& warn);
+rotation_values row_values(const table_row& s, const write_options& opts, warnings& warn);
 
 /// What an output of format `f` states about itself, as the members of a
 /// JSON object: a JSON document's first fields, an NDJSON header line, a

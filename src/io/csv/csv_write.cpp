@@ -61,7 +61,7 @@ public:
 
     void begin_track(const std::string& name, channels) override { name_ = name; }
 
-    void row(const sample& s) override {
+    void row(const table_row& s) override {
         if (info_.named) append_csv_cell(out_, name_), out_ += ',';
         row_text text(out_);
         bool first = true;

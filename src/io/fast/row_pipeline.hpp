@@ -44,7 +44,7 @@ public:
         if (workers_.empty()) return writer_.begin_track(name, carried);
         batch_.begins.push_back(*current_);
     }
-    void row(const sample& s) {
+    void row(const table_row& s) {
         if (workers_.empty()) {
             writer_.row(s);
             out_.maybe_flush();
@@ -76,7 +76,7 @@ private:
     struct batch {
         std::size_t number = 0;
         std::optional<track_begin> resumed;  // the track the rows before the first begin belong to
-        std::vector<sample> rows;
+        std::vector<table_row> rows;
         std::vector<double> weights;  // the rows' morph weights, one after another
         std::vector<track_begin> begins;
     };
@@ -171,7 +171,7 @@ private:
             if (!weighted || b.rows[i].weights.empty()) {
                 writer.row(b.rows[i]);
             } else {
-                sample s = b.rows[i];
+                table_row s = b.rows[i];
                 s.weights = std::span(b.weights).subspan(weights, s.weights.size());
                 weights += s.weights.size();
                 writer.row(s);
@@ -188,7 +188,7 @@ private:
     std::optional<track_begin> current_;
     std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
-    std::vector<std::vector<sample>> spare_rows_;  // for the next batches, so that no row lands on a fresh page
+    std::vector<std::vector<table_row>> spare_rows_;  // for the next batches, so that no row lands on a fresh page
     std::mutex mutex_;
     std::condition_variable changed_;
     bool done_ = false;

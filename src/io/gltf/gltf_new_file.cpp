@@ -46,7 +46,7 @@ public:
         tracks_.push_back({name, written, {}});
         for (spooled_channel* c : {&rotation_, &translation_, &scale_}) c->clear();
     }
-    void row(const sample& s) override {
+    void row(const table_row& s) override {
         // (the track's name in a message only when there is one to give)
         const auto where = [&] {
             const std::string& name = tracks_.back().name;

@@ -303,7 +303,7 @@ public:
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
         tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
     }
-    void row(const sample& s) override {
+    void row(const table_row& s) override {
         gltf_track& t = tracks_.back();
         static const full_spline_key none{};  // the tangents of a row that is no CUBICSPLINE key: none
         const full_spline_key& spline = s.spline ? *s.spline : none;

@@ -48,7 +48,7 @@ public:
         rows_ = 0;
     }
 
-    void row(const sample& s) override {
+    void row(const table_row& s) override {
         if (!lines_) out_ += rows_++ ? ",\n" : "\n";
         row_text text(out_);
         text.put('{');

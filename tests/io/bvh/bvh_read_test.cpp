@@ -104,8 +104,8 @@ TEST_CASE("BVH: a take that does not hold the frames its header states is an err
 }
 
 /// A BVH output row: time, rotation, position.
-sample bvh_row(double time, quat q, vec3 position) {
-    sample s;
+table_row bvh_row(double time, quat q, vec3 position) {
+    table_row s;
     s.time = time;
     s.rotation = q;
     s.translation = position;
@@ -133,17 +133,17 @@ TEST_CASE("bvh_output: tracks one after another, written as a line per frame in 
 }
 
 TEST_CASE("bvh_output: tracks that do not make the same frames for every joint are an error") {
-    const auto written = [](const std::vector<std::vector<sample>>& tracks) {
+    const auto written = [](const std::vector<std::vector<table_row>>& tracks) {
         std::ostringstream out;
         bvh_output file(std::nullopt, out, take_source(), 0.5, {});
         for (const auto& rows : tracks) {
             file.begin_track("", {}, {});
-            for (const sample& r : rows) file.row(r);
+            for (const table_row& r : rows) file.row(r);
         }
         file.finish();
         return out.str();
     };
-    const sample at0 = bvh_row(0, {}, {}), at1 = bvh_row(1, {}, {});
+    const table_row at0 = bvh_row(0, {}, {}), at1 = bvh_row(1, {}, {});
     CHECK(written({{at0, at1}, {at0, at1}}).find("Frames: 2") != std::string::npos);
     CHECK_THROWS_WITH_AS(written({{at0, at1}, {at0}}), doctest::Contains("'Leg' has 1 frames where 'Hips' has 2"), error);
     CHECK_THROWS_WITH_AS(written({{at0, at1}, {at0, at0}}), doctest::Contains("expected the same frames for every joint"),

@@ -159,7 +159,7 @@ TEST_CASE("glTF: a .glb written by open_table reads back, within 32-bit floats")
     for (int i = 0; i <= 24; ++i) {
         const double half = 0.5 * (i * 7.5) * std::acos(-1.0) / 180;  // 7.5 degrees a frame about x
         written.push_back({std::cos(half), std::sin(half), 0, 0});
-        table->row(sample{i / 24.0, static_cast<double>(i), written.back(), std::nullopt, std::nullopt});
+        table->row(table_row{{i / 24.0, static_cast<double>(i), written.back(), std::nullopt, std::nullopt}});
     }
     table->finish();
     const document d = read(scratch::read(path), format::glb);
