@@ -12,7 +12,7 @@
 namespace keyrot {
 
 track_store::track_store(std::size_t width)
-    : width_(width), block_(1024), filling_(width * block_), file_(std::tmpfile()) {}
+    : width_(width), filling_(width * block_), file_(std::tmpfile()) {}
 
 track_store::~track_store() {
     if (file_) std::fclose(file_);
@@ -32,8 +32,8 @@ void track_store::flush() {
         throw error(fmt::format("cannot store a BVH output's frames in a temporary file: {}", errno_text()));
 }
 
-const double* track_store::at(std::size_t t, std::size_t i) {
-    const std::size_t row = first_[t] + i, block = row / block_, offset = row % block_ * width_;
+const double* track_store::load(std::size_t t, std::size_t row) {
+    const std::size_t block = row / block_, offset = row % block_ * width_;
     if (block == total_ / block_) return filling_.data() + offset;  // not written yet
     if (cached_.size() < first_.size()) cached_.resize(first_.size(), SIZE_MAX), cache_.resize(first_.size());
     std::vector<double>& cache = cache_[t];

@@ -30,12 +30,18 @@ public:
     }
     /// Row `i` of track `t`, valid until `t`'s next row is asked for (a
     /// track's rows are read in order).
-    const double* at(std::size_t t, std::size_t i);
+    const double* at(std::size_t t, std::size_t i) {
+        const std::size_t row = first_[t] + i, block = row / block_;
+        if (t < cached_.size() && cached_[t] == block) return cache_[t].data() + row % block_ * width_;
+        return load(t, row);
+    }
 
 private:
+    static constexpr std::size_t block_ = 1024;  // rows per block
     void flush();
+    const double* load(std::size_t t, std::size_t row);
 
-    std::size_t width_, block_;                // numbers per row, rows per block
+    std::size_t width_;                        // numbers per row
     std::size_t total_ = 0;                    // rows pushed
     std::vector<std::size_t> first_;           // each track's first row
     std::vector<double> filling_;              // the block being gathered

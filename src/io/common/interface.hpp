@@ -1,7 +1,8 @@
 #pragma once
 // What the commands see of the formats: how keys are read (read_options,
 // key_reader, raw_key_sink) and how tables are written (table_info,
-// table_output). io/open.hpp opens them for a format.
+// table_row, table_output). io/open.hpp opens them for a format.
+#include <array>
 #include <functional>
 #include <istream>
 #include <memory>
@@ -9,6 +10,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "io/common/format.hpp"
@@ -101,11 +103,6 @@ struct table_info {
     bool operator==(const table_info&) const = default;
 };
 
-/// A table written row by row into -o FILE (a temporary file that replaces
-/// it at finish(), and is removed if finish() is never reached) or into a
-/// stream. begin_track comes before each track's rows (also for a single
-/// unnamed track). Large outputs are formatted on other threads and written
-/// in chunks as they fill.
 /// One output row: a sample (a resampled frame, or a key as it is), and
 /// what only the writers need of it.
 struct table_row : sample {
@@ -118,6 +115,11 @@ struct table_row : sample {
 };
 static_assert(std::is_trivially_copyable_v<table_row>);
 
+/// A table written row by row into -o FILE (a temporary file that replaces
+/// it at finish(), and is removed if finish() is never reached) or into a
+/// stream. begin_track comes before each track's rows (also for a single
+/// unnamed track). Large outputs are formatted on other threads and written
+/// in chunks as they fill.
 class table_output {
 public:
     virtual ~table_output() = default;
