@@ -136,7 +136,7 @@ std::string info_text(const described_file& file, std::optional<int> precision, 
     return out;
 }
 
-/// JSON strings, as a JSON array: ["a", "b"].
+/// JSON values, each JSON already, as a JSON array: ["a", "b"].
 std::string json_array(const std::vector<std::string>& quoted) { return fmt::format("[{}]", fmt::join(quoted, ", ")); }
 
 /// {"count": 12, "first": [1, 5, ...]}: how many, and the first ten.

@@ -250,7 +250,6 @@ public:
     const bvh_source& header() const { return header_; }
     std::size_t width() const { return width_; }
     std::size_t line() const { return lines_.number(); }
-    std::size_t count() const { return read_; }  ///< frame lines read
     /// The flags' settings, with the joint `j`'s sequence, degrees and the file's rate.
     const key_settings& settings(std::size_t j) {
         settings_.euler = header_.joints[j].euler;

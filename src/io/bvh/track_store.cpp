@@ -35,16 +35,15 @@ void track_store::flush() {
 const double* track_store::load(std::size_t t, std::size_t row) {
     const std::size_t block = row / block_, offset = row % block_ * width_;
     if (block == total_ / block_) return filling_.data() + offset;  // not written yet
+    // (at() found no block of track t in its cache.)
     if (cached_.size() < first_.size()) cached_.resize(first_.size(), SIZE_MAX), cache_.resize(first_.size());
     std::vector<double>& cache = cache_[t];
-    if (cached_[t] != block) {
-        cache.resize(filling_.size());
-        const std::size_t start = block * filling_.size();
-        if (!file_) std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(start), cache.size(), cache.begin());
-        else if (!read_doubles(file_, cache.data(), cache.size(), start))
-            throw error(fmt::format("cannot read a BVH output's frames back from a temporary file: {}", errno_text()));
-        cached_[t] = block;
-    }
+    cache.resize(filling_.size());
+    const std::size_t start = block * filling_.size();
+    if (!file_) std::copy_n(held_.begin() + static_cast<std::ptrdiff_t>(start), cache.size(), cache.begin());
+    else if (!read_doubles(file_, cache.data(), cache.size(), start))
+        throw error(fmt::format("cannot read a BVH output's frames back from a temporary file: {}", errno_text()));
+    cached_[t] = block;
     return cache.data() + offset;
 }
 
