@@ -24,7 +24,7 @@ namespace {
 struct raw_flags {
     std::string from, to, rep, euler, out_euler, quat_order, method,
                         path = "shortest", from_rep = "quat", report,
-                        settings_line;
+                        settings_line, velocity_frame = "body";
     bool out_degrees = false, out_radians = false, ignore_extra = false;
     std::optional<int> precision;
     std::optional<double> key_fps;
@@ -163,6 +163,10 @@ void finish(options& o, const raw_flags& f) {
     if (f.ignore_extra) o.extra = extra_rows::allowed;
     if (!f.method.empty()) o.how = parse<method>(f.method);
     o.way = *parse<path>(f.path);
+    if (o.how == method::cubic && o.way == path::direct)
+        throw usage_error("--method cubic turns the short way between keys, as scipy's RotationSpline does: "
+                          "expected --path shortest");
+    o.rates_frame = *parse<motion_frame>(f.velocity_frame);
     check_rate("--fps", o.fps);
     if (o.max_bytes && *o.max_bytes < 1) throw usage_error("--max-bytes: expected at least 1 byte, got 0");
     if (!(std::isfinite(o.max_frames) && o.max_frames >= 1))
@@ -201,9 +205,18 @@ void define_resample(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--max-frames", o.max_frames,
                    fmt::format("most frames a track may make (default {:.0f}: {:.0f} hours at {} fps)", o.max_frames,
                                o.max_frames / o.fps / 3600, o.fps));
+    sub.option_defaults()->group("Velocity");
+    sub.add_flag("--velocity", o.velocity,
+                 "add each frame's angular velocity (wx wy wz, the output angle unit per second) of the curve played");
+    sub.add_flag("--acceleration", o.acceleration, "add its angular acceleration (dwx dwy dwz, per second squared)");
+    sub.add_option("--velocity-frame", f.velocity_frame,
+                   "body: about the object's own axes, as a gyroscope on it reads; world: about the fixed axes "
+                   "(default: body)")
+        ->check(CLI::IsMember(names<motion_frame>()));
     sub.footer(R"(Examples:
   keyrot resample walk.csv --fps 30 -o walk30.json
   keyrot resample turntable.csv --method squad --rep quat --precision 6
+  keyrot resample turntable.csv --method cubic --velocity --acceleration -o smooth.json
   keyrot resample *.csv --fps 60 --to ndjson --output-dir resampled)");
 }
 
@@ -304,14 +317,19 @@ void define_info(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_option("--to", f.to, "json: a JSON description instead of text")->check(CLI::IsMember({"json"}));
     sub.add_option("--precision", f.precision, "digits after the decimal point in the text (default 6)");
     sub.add_flag("--segments", o.segments, "every segment's angle and speed, not only the largest (holds them all)");
+    add_method_flags(sub, f);
     add_input_flags(sub, o, f);
     add_convention_flags(sub, o, f);
     sub.footer(R"(A summary of each track: its keys, span and spacing, its largest step between keys, and the keys
-to look at (flipped, renormalised, near gimbal lock). --segments adds a line per segment.
+to look at (flipped, renormalised, near gimbal lock), and its speed: the largest angular speed and
+acceleration of the curve --method plays (default: slerp, or a glTF sampler's own), and the segments
+over ten times the median speed and over 360 deg/s, each also a warning (a flip, swapped joints or a
+dropped marker in a captured take). --segments adds a line per segment.
 
 Examples:
   keyrot info walk.csv
   keyrot info wide_turn.csv --segments
+  keyrot info capture.bvh --method cubic
   keyrot info homework.json head_turn.json --to json)");
 }
 

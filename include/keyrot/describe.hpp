@@ -2,11 +2,13 @@
 // What `keyrot info` tells about a track, learnt a key at a time.
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "keyrot/interpolate.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {
@@ -28,6 +30,33 @@ struct key_list {
     }
 };
 
+/// Where a track's curve is fastest, or accelerates most.
+struct peak {
+    double value = 0;                      ///< deg/s, or deg/s^2
+    double time = 0;                       ///< seconds
+    std::size_t from = 0;  ///< the index of the segment's first key (the next is the segment's last)
+    /// The segment's keys' frame numbers, where they have them.
+    std::optional<double> frame = std::nullopt, frame_to = std::nullopt;
+};
+
+/// The speed of a track's curve under a method: its largest angular speed
+/// and acceleration, its mean speed, and the segments far faster than
+/// those around them.
+struct speed_info {
+    method how = method::slerp;
+    peak fastest, most_accelerated;
+    double mean = 0;           ///< deg/s, over the track's time
+    std::vector<peak> spikes;  ///< the first key_list::listed, in time order
+    std::size_t spike_count = 0;
+};
+
+/// A segment whose largest speed is above both of these is a spike (a
+/// flip, swapped joints or a marker drop in a captured take): so many times
+/// the median of the largest speeds of the spike_window segments around it
+/// (the segment in the middle; fewer at a track's ends), and this many deg/s.
+inline constexpr double spike_times_median = 10, spike_floor_deg_s = 360;
+inline constexpr std::size_t spike_window = 65;
+
 struct track_info {
     std::string name;
     std::size_t keys = 0;
@@ -48,6 +77,8 @@ struct track_info {
     /// sign is keyrot's choice): only then do `flipped` and
     /// `direct_long_way` say something about the input.
     bool signed_keys = false;
+    /// The curve's speed (two keys or more; once finish() has come).
+    std::optional<speed_info> speed;
     /// Keys are evenly spaced: the gaps differ by no more than rounding.
     bool even() const { return keys > 1 && longest_gap - shortest_gap <= 1e-9 * std::max(1.0, std::fabs(end)); }
 };
@@ -55,16 +86,31 @@ struct track_info {
 /// Euler keys whose middle angle is this close to its singular value are reported.
 inline constexpr double near_gimbal_deg = 1;
 
-/// A track described as its keys arrive, in time order, in constant
-/// memory unless every segment is kept.
+/// A track described as its keys arrive, in time order, in constant memory
+/// unless every segment is kept (--segments), or the method is cubic (40
+/// bytes a key, as resample).
 class track_describer {
 public:
-    /// `euler`: the track's sequence; `segments`: keep every segment.
-    track_describer(std::string name, std::optional<euler_seq> euler, bool segments);
+    /// `euler`: the track's sequence; `segments`: keep every segment; the
+    /// speeds are those of the curve `how` and `way` play (the angular
+    /// speed's largest of five points in each segment, which slerp's is at all of them).
+    /// Throws option_error for method::euler without a sequence.
+    track_describer(std::string name, std::optional<euler_seq> euler, bool segments, method how = method::slerp,
+                    path way = path::shortest);
     void add(const key& k);
+    /// After the last key: the speeds. Throws spline_error as segment_builder::pop.
+    void finish();
     const track_info& info() const noexcept { return info_; }
 
 private:
+    void measure(const segment& s);
+    void judge_until(std::size_t end);  // spikes? the segments not yet judged before `end`, against window_'s median
+    segment_builder builder_;
+    std::deque<peak> window_;  // the latest segments' fastest points, up to spike_window
+    std::size_t dropped_ = 0;  // segments gone from the front of window_
+    std::size_t judged_ = 0;   // segments judged (each once, in order)
+    double speed_time_ = 0;    // the integral of the speed over the segments measured, deg
+    std::deque<std::optional<double>> frames_;  // the frame numbers of the keys no segment has begun at yet
     std::optional<euler_seq> euler_;
     bool keep_segments_;
     track_info info_;
@@ -73,9 +119,9 @@ private:
     quat aligned_{};  ///< the previous key as --path shortest plays it
 };
 
-/// What `keyrot info` prints of a track, every segment kept: a track of two
-/// keys, the identity at 0 s and 90 degrees about z at 1 s, has one segment
-/// of 90 degrees at 90 degrees per second.
+/// What `keyrot info` prints of a track, every segment kept, its speeds
+/// by slerp: a track of two keys, the identity at 0 s and 90 degrees about
+/// z at 1 s, has one segment of 90 degrees at 90 degrees per second.
 track_info describe(const track& t);
 
 }  // namespace keyrot

@@ -9,7 +9,9 @@
 
 #include "keyrot/convert.hpp"
 #include "keyrot/method.hpp"
+#include "keyrot/motion.hpp"
 #include "keyrot/quat.hpp"
+#include "keyrot/rotation_spline.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {
@@ -44,6 +46,8 @@ public:
     /// Constant angular speed, no sign flip (a and b as given, so b = -a
     /// turns a full 360 degrees, about a's local x). Exact at h = 0 and 1.
     quat at(double h) const noexcept;
+    /// The rotation vector (radians) it turns, a to b: its angular velocity times the segment's duration.
+    vec3 rotation_vector() const noexcept;
 
 private:
     quat a_, b_;
@@ -64,6 +68,12 @@ quat squad_control(quat prev, quat cur, quat next) noexcept;
 
 class segment_curve;
 
+/// A cubic track whose spline's equations do not settle (steps near 180
+/// degrees between keys of very uneven spacing: scipy's iteration fails there too).
+struct spline_error : error {
+    using error::error;
+};
+
 /// Two neighbouring keys and what a method needs of them.
 class segment {
 public:
@@ -81,6 +91,7 @@ private:
     quat s0_, s1_;                       // squad: the control points
     std::array<double, 3> e0_{}, e1_{};  // euler: the keys' angles
     spline_key spline0_, spline1_;       // cubicspline: the keys as the spline passes them
+    spline_segment cubic_;               // cubic
     euler_seq seq_;
 };
 
@@ -89,6 +100,9 @@ class segment_curve {
 public:
     /// The rotation at local parameter h in [0, 1].
     quat at(double h) const noexcept;
+    /// The curve's exact angular velocity and acceleration there, in the
+    /// body frame, per second (zero for step; slerp's velocity is constant).
+    motion rates(double h) const noexcept;
 
 private:
     friend class segment;
@@ -99,8 +113,11 @@ private:
 
 /// Turns a track's keys, as they arrive, into segments: the sign of each key
 /// set by the path (cubicspline keeps the file's, which its tangents are
-/// of), squad's control points (one key of look-ahead), Euler
-/// angles for --method euler. Memory stays a few keys.
+/// of; cubic always turns the short way, as scipy's RotationSpline does),
+/// squad's control points (one key of look-ahead), Euler angles for
+/// --method euler. Memory stays a few keys, but for cubic, whose segments
+/// all depend on every key: it keeps the track's times and rotations
+/// (and, while solving, spline_key_rates' system) and gives its segments at the end.
 class segment_builder {
 public:
     /// Throws option_error for method::euler without a sequence.
@@ -110,9 +127,10 @@ public:
     quat add(const key& k);
     /// The next segment whose keys (and look-ahead) have arrived; with
     /// `end` (no more keys) also the last one. False when there is none.
+    /// Throws spline_error for a cubic track whose spline does not converge.
     bool pop(segment& out, bool end);
     /// Forgets the keys: the next one added begins a track (its memory kept).
-    void clear() noexcept { window_.clear(); }
+    void clear() noexcept;
 
 private:
     struct entry {
@@ -125,6 +143,12 @@ private:
     path way_;
     std::optional<euler_seq> seq_;
     std::vector<entry> window_;  // at most three keys
+    struct {
+        std::vector<double> times;
+        std::vector<quat> keys;
+        spline_rates rates;  // once solved
+        std::size_t next = 0;  // the segment pop() gives next
+    } cubic_;
 };
 
 /// A whole track's curve, for callers that have all its keys.

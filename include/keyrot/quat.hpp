@@ -35,6 +35,10 @@ vec3 cross(vec3 a, vec3 b) noexcept;
 /// Euclidean length without overflow or underflow (|(1e-200, 0, 0)| = 1e-200).
 double norm(vec3 v) noexcept;
 
+/// Component-wise, for derivatives of quaternions (motion.hpp):
+/// {1, 0, 0, 0} + {0, 1, 0, 0} = {1, 1, 0, 0}; 2 * {1, 0, 0, 0} = {2, 0, 0, 0}.
+quat operator+(quat a, quat b) noexcept;
+quat operator*(double s, quat q) noexcept;
 /// -q, the same rotation: -{1, 0, 0, 0} = {-1, 0, 0, 0}.
 quat operator-(quat q) noexcept;
 /// Hamilton product: a*b applies b first. Each component is summed in twice

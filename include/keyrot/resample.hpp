@@ -26,6 +26,11 @@ struct resample_options {
     /// 32-bit floats): a frame that close to a key is at it, beyond the
     /// grid's own tolerance of 1e-9 frame.
     double time_rounding = 0;
+    /// Each frame's angular velocity and acceleration (segment_curve::rates),
+    /// in the body frame or the fixed one. At a key, where a method's
+    /// derivative may jump, the outgoing segment's (the incoming one's at the last key).
+    bool velocity = false, acceleration = false;
+    motion_frame rates_frame = motion_frame::body;
 };
 
 /// Where frames go as they are made.
@@ -107,8 +112,10 @@ public:
 
 private:
     void frames_of(const segment& s);
+    void rated_frames_of(const segment& s, bool at_start);  // frames_of with velocity or acceleration
     void frames_until(double time, quat q);  // frames at a key time, up to `time` (within tolerance)
     void out(double frame, quat q);
+    void rated_out(sample& s);
     void resolve_vectors(bool end);
 
     resample_options opts_;
@@ -122,8 +129,15 @@ private:
     bool emitted_ = false;
     value_channel<vec3> translation_, scale_;
     value_channel<morph_weights> weights_;
-    std::deque<sample> pending_;  // frames waiting for a translation, scale or weights key
-    morph_weights weights_now_;   // what the frame handed over views
+    bool rates_;                   // velocity or acceleration
+    motion rates_now_;             // the next frame's, in the body frame
+    struct waiting {
+        sample s;
+        frame_rates rates;
+    };
+    std::deque<waiting> pending_;  // frames waiting for a translation, scale or weights key
+    morph_weights weights_now_;    // what the frame handed over views
+    frame_rates rates_out_;        // likewise
 };
 
 /// A whole track: check_frame_range, then every frame through emit. Keys at

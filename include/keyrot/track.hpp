@@ -68,6 +68,13 @@ struct track_interpolation {
 /// states one, whatever rate the output is resampled at.
 inline constexpr double default_key_fps = 24;
 
+/// A row's angular velocity and acceleration (radians per second, per
+/// second squared), where asked for (resample --velocity) or read.
+struct frame_rates {
+    std::optional<vec3> velocity, acceleration;
+    bool any() const { return velocity || acceleration; }
+};
+
 struct key {
     location at;                  ///< where it was read, for errors
     double time = 0;              ///< seconds
@@ -84,6 +91,7 @@ struct key {
     std::optional<quat> given_quat = std::nullopt;
     /// glTF CUBICSPLINE keys only (held apart: keys are copied often, and most have none).
     std::shared_ptr<const full_spline_key> spline;
+    frame_rates rates;  ///< as read, in radians (a frame of resample --velocity)
 };
 
 struct track {
@@ -128,6 +136,8 @@ struct sample {
     /// during that call: a sample stays trivially copyable, so the frames
     /// of the everyday track (which has none) cost no more to pass around.
     std::span<const double> weights = {};
+    /// The angular velocity and acceleration, where asked for, held as the weights are.
+    const frame_rates* rates = nullptr;
 };
 static_assert(std::is_trivially_copyable_v<sample>);
 

@@ -40,6 +40,8 @@ struct options {
     std::optional<method> how;  ///< --method; by default a glTF sampler's own, else slerp
     path way = path::shortest;
     double max_frames = resample_options{}.max_frames;  ///< per track (--max-frames)
+    bool velocity = false, acceleration = false;     ///< resample --velocity, --acceleration
+    motion_frame rates_frame = motion_frame::body;   ///< --velocity-frame
     /// --max-bytes: a line, a JSON document or a glTF file read whole (none: default_max_line_bytes for
     /// a line, default_max_bytes for a document)
     std::optional<std::size_t> max_bytes;

@@ -36,19 +36,60 @@ struct described_file {
     std::vector<described_track> tracks;
 };
 
+/// "0.35 s (frames 42 to 43)" where the segment's keys have frame numbers, else "0.35 s (keys 42 to 43)".
+std::string place(const peak& p) {
+    std::string time;
+    append_number(time, p.time, 6);
+    if (!p.frame || !p.frame_to) return fmt::format("{} s (keys {} to {})", time, p.from, p.from + 1);
+    std::string from, to;
+    append_number(from, *p.frame, std::nullopt);
+    append_number(to, *p.frame_to, std::nullopt);
+    return fmt::format("{} s (frames {} to {})", time, from, to);
+}
+
+/// A warning for each speed spike (the first ten, and how many more).
+void speed_warnings(const track_info& t, warnings& warn) {
+    if (!t.speed) return;
+    const speed_info& v = *t.speed;
+    for (const peak& p : v.spikes) {
+        std::string speed;
+        append_number(speed, p.value, 0);
+        warn.once(fmt::format("spike {} {}", t.name, p.from),
+                  fmt::format("{}{} deg/s at {}, over {} times the speed around it: a flip, swapped joints or a "
+                              "dropped marker?",
+                              t.name.empty() ? "" : fmt::format("track '{}': ", t.name), speed, place(p),
+                              spike_times_median));
+    }
+    if (v.spike_count > v.spikes.size())
+        warn.once("spikes " + t.name, fmt::format("{}{} more such speeds", t.name.empty() ? "" : fmt::format("track '{}': ", t.name),
+                              v.spike_count - v.spikes.size()));
+}
+
 described_file describe_file(const options& o, const input_source& src, warnings& warn) {
     described_file file{src.source(), src.detect(o.from), {}};
     track_order order;
     const auto restart = [&] { file.tracks.clear(), order.clear(); };
     const auto each = [&](const std::string& name, const key_settings& s, key&& k) {
         const auto [at, added] = order.add(name, k, src.source());
-        if (added) file.tracks.push_back({track_describer(name, s.euler, o.segments), s.interpolation, s.key_fps, {}});
+        if (added) {
+            // the speed under the method in force: --method, else the file's own, else slerp
+            const method how = o.how.value_or(s.interpolation ? s.interpolation->rotation : method::slerp);
+            file.tracks.push_back({track_describer(name, s.euler, o.segments, how, o.way), s.interpolation, s.key_fps, {}});
+        }
         described_track& t = file.tracks[at];
         t.keys.add(k);
         t.carried |= channels_of(k);
         t.counted = t.counted || (k.frame && !k.has_time);
     };
     for_each_key(src, file.fmt, reading(o, src.source()), warn, restart, each);
+    for (described_track& t : file.tracks) {
+        try {
+            t.keys.finish();
+        } catch (const spline_error& e) {
+            throw error(fmt::format("{}: track '{}': {}", src.source(), t.keys.info().name, e.what()));
+        }
+        speed_warnings(t.keys.info(), warn);
+    }
     return file;
 }
 
@@ -121,6 +162,18 @@ std::string info_text(const described_file& file, std::optional<int> precision, 
                                t.largest_from, t.largest_from + 1, num(t.largest_start), num(t.largest_end),
                                num(s.speed_deg_s), s.direct_long_way && t.signed_keys ? " (long way with --path direct)" : "");
         }
+        if (t.speed) {
+            const speed_info& v = *t.speed;
+            out += fmt::format("  speed ({}): up to {} deg/s at {}, mean {} deg/s\n", to_string(v.how),
+                               num(v.fastest.value), place(v.fastest), num(v.mean));
+            out += fmt::format("  acceleration ({}): up to {} deg/s^2 at {}\n", to_string(v.how),
+                               num(v.most_accelerated.value), place(v.most_accelerated));
+            std::vector<std::string> where;
+            for (const peak& p : v.spikes) where.push_back(place(p));
+            if (v.spike_count > v.spikes.size()) where.push_back(fmt::format("... ({} in all)", v.spike_count));
+            out += fmt::format("  speed spikes (over {} times the speed around and {} deg/s): {}\n",
+                               spike_times_median, spike_floor_deg_s, where.empty() ? "none" : fmt::format("{}", fmt::join(where, ", ")));
+        }
         for (std::size_t i = 0; i < t.segments.size(); ++i) {
             const segment_info& s = t.segments[i];
             if (i == 0) out += "  segment  angle (deg)  speed (deg/s)\n";
@@ -168,6 +221,22 @@ std::string info_json(const described_file& file, bool segments, const bvh_sourc
                                              .number("angle", t.largest->angle_deg)
                                              .number("speed", t.largest->speed_deg_s)
                                              .object());
+        }
+        if (t.speed) {
+            const speed_info& v = *t.speed;
+            const auto at = [](const peak& p) {
+                return json_object().number("value", p.value).number("time", p.time).count("from", p.from)
+                    .number("frame", p.frame).number("frame_to", p.frame_to).object();
+            };
+            std::vector<std::string> spikes;
+            for (const peak& p : v.spikes) spikes.push_back(at(p));
+            track.raw("speed", json_object()
+                                   .text("method", to_string(v.how))
+                                   .raw("fastest", at(v.fastest))
+                                   .raw("most_accelerated", at(v.most_accelerated))
+                                   .number("mean", v.mean)
+                                   .raw("spikes", json_object().count("count", v.spike_count).raw("first", json_array(spikes)).object())
+                                   .object());
         }
         if (segments) {
             std::vector<std::string> each;

@@ -53,6 +53,7 @@ resample_options resampling(const options& o) {
     r.how = o.how.value_or(method::slerp);
     r.way = o.way;
     r.max_frames = o.max_frames;
+    r.velocity = o.velocity, r.acceleration = o.acceleration, r.rates_frame = o.rates_frame;
     return r;
 }
 

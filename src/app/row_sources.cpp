@@ -34,9 +34,11 @@ void own_methods(const track_interpolation& own, Options& r) {
 }
 
 table_row key_row(const key& k) {
-    return table_row{{k.time, k.frame, k.rotation, k.translation, k.scale, k.weights},  // (views k's)
+    return table_row{{k.time, k.frame, k.rotation, k.translation, k.scale, k.weights,  // (views k's)
+                      k.rates.any() ? &k.rates : nullptr},
                      k.has_time,
-                     std::nullopt,
+                     false,
+                     {},
                      k.spline.get()};
 }
 
@@ -58,13 +60,15 @@ void check_frames(const key& first, const key& last, const std::string& track_na
 /// resample: every frame of the grid within a track's keys.
 class frame_rows final : public row_source {
 public:
-    /// `method_given`: --method overrides the interpolation a file states.
-    frame_rows(const resample_options& r, bool method_given) : opts_(r), method_given_(method_given) {}
+    /// `method_given`: --method overrides the interpolation a file states; `source` names the input.
+    frame_rows(const resample_options& r, bool method_given, std::string source)
+        : opts_(r), method_given_(method_given), source_(std::move(source)) {}
     table_info table(const document_facts& d) const override {
         table_info info;
         info.named = d.named;
         info.carried = d.carried();
         info.fps = opts_.fps;
+        info.velocity = opts_.velocity, info.acceleration = opts_.acceleration;
         // The method, when one interpolates every track's rotation.
         const method first = of(d.tracks.front().interpolation).how;
         if (std::all_of(d.tracks.begin(), d.tracks.end(), [&](const auto& t) { return of(t.interpolation).how == first; }))
@@ -77,8 +81,15 @@ public:
     void check(const document_facts& d, warnings& warn) const override {
         for (const auto& t : d.tracks) {
             check_method(of(t.interpolation).how, t.euler);
+            if (of(t.interpolation).how == method::cubic && t.keys < 2)
+                throw input_error(where(warn.source(), t.first.at),
+                                  fmt::format("{}one key: --method cubic needs two keys or more",
+                                              t.name.empty() ? "" : fmt::format("track '{}' has ", t.name)));
             check_frames(t.first, t.last, t.name, of(t.interpolation), warn.source());
         }
+        if (d.velocity || d.acceleration)
+            warn.once("rates", "ignoring the angular velocity and acceleration read: resample --velocity and "
+                               "--acceleration give the resampled curve's own");
         const bool assumed = std::any_of(d.tracks.begin(), d.tracks.end(), [](const auto& t) { return !t.key_fps; });
         if (d.counted && assumed && opts_.fps != default_key_fps)
             warn.once("key rate", fmt::format("frame numbers count at {} fps (the default, whatever --fps is): "
@@ -100,14 +111,41 @@ public:
         return {linear_or_step(r.how), linear_or_step(r.translation_how.value_or(r.how)),
                 linear_or_step(r.scale_how.value_or(r.how)), linear_or_step(r.weights_how.value_or(r.how))};
     }
-    void begin_track(const std::string&, const std::optional<euler_seq>& euler,
+    void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
                      const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
         resampler_.emplace(of(own), euler, carried, [row = std::move(row)](const sample& s) { row(table_row{s}); });
+        track_ = name;
+        first_.reset();
     }
-    void add(const key& k) override { resampler_->add(k); }
-    void end_track() override { resampler_->finish(); }
+    void add(const key& k) override {
+        if (!first_) first_ = k.at;
+        resampler_->add(k);
+    }
+    void end_track() override {
+        try {
+            resampler_->finish();
+        } catch (const spline_error& e) {
+            throw unsettled(track_, first_.value_or(location{}), e);
+        }
+    }
+    /// A cubic spline is solved at its track's end: to standard output, before the first row.
+    bool checks_tracks() const override { return method_given_ && opts_.how == method::cubic; }
+    void check_track(const std::string& name, std::span<const key> keys) const override {
+        segment_builder builder(method::cubic, path::shortest, std::nullopt);
+        for (const key& k : keys) builder.add(k);
+        try {
+            segment s;
+            builder.pop(s, true);
+        } catch (const spline_error& e) {
+            throw unsettled(name, keys.front().at, e);
+        }
+    }
 
 private:
+    input_error unsettled(const std::string& track, const location& first, const spline_error& e) const {
+        return input_error(where(source_, first),
+                           fmt::format("{}{}", track.empty() ? "" : fmt::format("track '{}': ", track), e.what()));
+    }
     /// How a track whose file states `own` is resampled.
     resample_options of(const std::optional<track_interpolation>& own) const {
         resample_options r = opts_;
@@ -119,7 +157,10 @@ private:
 
     resample_options opts_;
     bool method_given_;
+    std::string source_;
     std::optional<track_resampler> resampler_;
+    std::string track_;
+    std::optional<location> first_;  // the track's first key, which a spline_error names
 };
 
 /// convert: each key as it is, with its own frame or time.
@@ -133,6 +174,7 @@ public:
         info.all_frames = d.all_frames;
         info.any_time = d.any_time;
         info.counted = d.counted;
+        info.velocity = d.velocity, info.acceleration = d.acceleration;
         info.rows_name = d.frames ? "frames" : "keys";
         // The rate frames count at, where the input states it (an assumed one is not written as if stated).
         if (d.any_frame) info.fps = d.tracks.front().key_fps;
@@ -266,8 +308,8 @@ private:
 
 }  // namespace
 
-std::unique_ptr<row_source> make_frame_rows(const resample_options& r, bool method_given) {
-    return std::make_unique<frame_rows>(r, method_given);
+std::unique_ptr<row_source> make_frame_rows(const resample_options& r, bool method_given, std::string source) {
+    return std::make_unique<frame_rows>(r, method_given, std::move(source));
 }
 
 std::unique_ptr<row_source> make_key_rows() { return std::make_unique<key_rows>(); }

@@ -5,6 +5,7 @@
 #include <iosfwd>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ struct document_facts {
     bool frames = false;     // some key has both: keyrot's own frames
     bool any_frame = false;  // some key has a frame
     bool counted = false;    // some key is timed by its frame number alone
+    bool velocity = false, acceleration = false;  // some key has them (a frame of resample --velocity)
 
     /// Key `k` of track `track`, whose settings are `s`.
     void add(const std::string& track, const key_settings& s, key&& k) {
@@ -44,6 +46,7 @@ struct document_facts {
             tracks.push_back({track, k, k, {}, s.euler, s.key_fps, 0, s.interpolation});
         any_frame = any_frame || k.frame.has_value();
         counted = counted || (k.frame && !k.has_time);
+        velocity = velocity || k.rates.velocity, acceleration = acceleration || k.rates.acceleration;
         ++tracks.back().keys;
         tracks.back().carried |= channels_of(k);
         tracks.back().last = std::move(k);
@@ -72,6 +75,10 @@ public:
     virtual table_info table(const document_facts& d) const = 0;
     /// Checks the whole input before anything is written; warns of what it assumed.
     virtual void check(const document_facts& d, warnings& warn) const = 0;
+    /// Whether check_track is to see every track's keys before anything is written.
+    virtual bool checks_tracks() const { return false; }
+    /// Checks what only a whole track shows (a cubic spline that does not settle).
+    virtual void check_track(const std::string&, std::span<const key>) const {}
     /// In one pass: checks key `k` of track `name`, whose first key is `first`, before its rows.
     virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
     /// How a glTF file is to interpolate the rows of a track whose file states `own`.
@@ -88,8 +95,8 @@ public:
 };
 
 /// resample: every frame of the grid within a track's keys. `method_given`:
-/// --method overrides the interpolation a file states.
-std::unique_ptr<row_source> make_frame_rows(const resample_options& r, bool method_given);
+/// --method overrides the interpolation a file states; `source` names the input in messages.
+std::unique_ptr<row_source> make_frame_rows(const resample_options& r, bool method_given, std::string source);
 
 /// convert: each key as it is, with its own frame or time.
 std::unique_ptr<row_source> make_key_rows();

@@ -163,6 +163,25 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
     return seen;
 }
 
+/// Every track's keys to the row source's check_track: an input read whole
+/// (`doc`), or streamed once more.
+void check_tracks(const transform_plan& p, const input_source& src, const std::optional<document>& doc, warnings& warn) {
+    if (doc) {
+        for (const track& t : doc->tracks) p.rows->check_track(t.name, t.keys);
+        return;
+    }
+    const pass_keys keys = open_keys(p, src, warn);
+    std::string name, track;
+    raw_key raw;
+    std::vector<key> held;
+    while (keys.reader->next(name, raw)) {
+        if (name != track && !held.empty()) p.rows->check_track(track, held), held.clear();
+        track = name;
+        held.push_back(make_key(raw, keys.reader->settings(), warn));
+    }
+    if (!held.empty()) p.rows->check_track(track, held);
+}
+
 /// The tracks of an input read whole, whose facts are `d`.
 void whole_rows(const transform_plan& p, const document& doc, const document_facts& d, table_output& rows) {
     const auto row = [&](const table_row& s) { rows.row(s); };
@@ -233,6 +252,7 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
         d = facts_of(*whole);
     }
     p.rows->check(d, warn);
+    if (p.rows->checks_tracks()) check_tracks(p, src, whole, warn);
     const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing_for(p, src, d, warn), warn);
     if (whole) whole_rows(p, *whole, d, *table);
     else if (!stream_rows(p, src, &d, *table, warn))  // pass 1 took it: the document is not what it was
@@ -249,7 +269,11 @@ transform_plan plan_for(const options& o, const std::string& name, const input_s
     if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
     else if ((p.target = output_path(o)) && !o.to) p.out = format_of_path(*p.target).value_or(p.in);
     if (o.cmd == command::resample) {
-        p.rows = make_frame_rows(resampling(o), o.how.has_value());
+        if ((o.velocity || o.acceleration) && (p.out == format::bvh || is_gltf(p.out)))
+            throw usage_error(fmt::format("--{}: {} has no place for an angular velocity: expected --to csv, json or "
+                                          "ndjson, or -o with one of their extensions",
+                                          o.velocity ? "velocity" : "acceleration", p.out == format::bvh ? "BVH" : "glTF"));
+        p.rows = make_frame_rows(resampling(o), o.how.has_value(), src.source());
     } else if (o.cmd == command::reduce) {
         if (p.out == format::bvh)
             throw usage_error("reduce: BVH has a line for every frame, so it cannot drop keys: expected --to csv, "

@@ -18,9 +18,69 @@ double gimbal_distance(quat q, const euler_seq& seq) {
 
 }  // namespace
 
-track_describer::track_describer(std::string name, std::optional<euler_seq> euler, bool segments)
-    : euler_(std::move(euler)), keep_segments_(segments) {
+track_describer::track_describer(std::string name, std::optional<euler_seq> euler, bool segments, method how,
+                                 path way)
+    : builder_(how, way, euler), euler_(std::move(euler)), keep_segments_(segments) {
     info_.name = std::move(name);
+    const peak none{-1, 0, 0, std::nullopt, std::nullopt};  // (below any speed)
+    info_.speed = speed_info{how, none, none, 0, {}, 0};
+}
+
+void track_describer::measure(const segment& s) {
+    const segment_curve curve = s.curve();
+    speed_info& v = *info_.speed;
+    const std::size_t from = dropped_ + window_.size();
+    const std::optional<double> frame = frames_[0], frame_to = frames_[1];
+    frames_.pop_front();
+    peak fastest{-1, 0, from, frame, frame_to};
+    double sum = 0;  // Simpson's rule over the five points
+    const double weights[] = {1, 4, 2, 4, 1};
+    for (std::size_t j = 0; j < 5; ++j) {
+        const double h = static_cast<double>(j) / 4;
+        const motion m = curve.rates(h);
+        const double time = s.t0 + h * (s.t1 - s.t0);
+        const double speed = from_radians(norm(m.velocity), angle_unit::degrees);
+        const double acceleration = from_radians(norm(m.acceleration), angle_unit::degrees);
+        sum += weights[j] * speed;
+        if (speed > fastest.value) fastest.value = speed, fastest.time = time;
+        if (acceleration > v.most_accelerated.value) v.most_accelerated = {acceleration, time, from, frame, frame_to};
+    }
+    speed_time_ += sum / 12 * (s.t1 - s.t0);
+    if (fastest.value > v.fastest.value) v.fastest = fastest;
+    window_.push_back(fastest);
+    // A full window judges the segment in its middle (the first one, those before it too).
+    if (window_.size() == spike_window) {
+        judge_until(dropped_ + spike_window / 2 + 1);
+        window_.pop_front();
+        ++dropped_;
+    }
+}
+
+void track_describer::judge_until(std::size_t end) {
+    if (judged_ >= end) return;
+    std::array<double, spike_window> speeds{};
+    for (std::size_t i = 0; i < window_.size(); ++i) speeds[i] = window_[i].value;
+    const auto last = speeds.begin() + static_cast<std::ptrdiff_t>(window_.size());
+    const auto median = speeds.begin() + static_cast<std::ptrdiff_t>(window_.size() / 2);
+    std::nth_element(speeds.begin(), median, last);
+    speed_info& v = *info_.speed;
+    for (; judged_ < end; ++judged_) {
+        const peak& p = window_[judged_ - dropped_];
+        if (p.value > spike_times_median * *median && p.value > spike_floor_deg_s && v.spike_count++ < key_list::listed)
+            v.spikes.push_back(p);
+    }
+}
+
+void track_describer::finish() {
+    segment s;
+    while (builder_.pop(s, true)) measure(s);
+    if (info_.keys < 2) {
+        info_.speed.reset();
+        return;
+    }
+    // The segments after the last window's middle (a short track's all) against it.
+    judge_until(dropped_ + window_.size());
+    info_.speed->mean = speed_time_ / (info_.end - info_.start);
 }
 
 void track_describer::add(const key& k) {
@@ -57,11 +117,16 @@ void track_describer::add(const key& k) {
     aligned_ = aligned;
     previous_ = k.rotation;
     previous_time_ = k.time;
+    builder_.add(k);
+    frames_.push_back(k.frame);
+    segment s;
+    while (builder_.pop(s, false)) measure(s);
 }
 
 track_info describe(const track& t) {
     track_describer d(t.name, t.euler, true);
     for (const key& k : t.keys) d.add(k);
+    d.finish();
     return d.info();
 }
 

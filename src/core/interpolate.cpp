@@ -1,5 +1,7 @@
 #include "keyrot/interpolate.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <numbers>
 
@@ -45,6 +47,12 @@ KEYROT_FMA_CLONES quat slerp_segment::at(double h) const noexcept {
     return a_ * p;
 }
 
+vec3 slerp_segment::rotation_vector() const noexcept {
+    const double angle = 2 * (half_ + half_lo_);
+    return {static_cast<double>(angle * axis_x_), static_cast<double>(angle * axis_y_),
+            static_cast<double>(angle * axis_z_)};
+}
+
 quat slerp(quat a, quat b, double h) noexcept { return slerp_segment(a, b).at(h); }
 
 KEYROT_FMA_CLONES quat nlerp(quat a, quat b, double h) noexcept {
@@ -77,6 +85,7 @@ quat segment_curve::at(double h) const noexcept {
         // Shoemake's squad: slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)).
         case method::squad: return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h));
         case method::step: return keys_.q0;
+        case method::cubic: return keys_.cubic_.at(h);
         case method::cubicspline: {
             const auto c = [](quat q) { return std::array<double, 4>{q.w, q.x, q.y, q.z}; };
             const spline_key &a = keys_.spline0_, &b = keys_.spline1_;
@@ -92,6 +101,74 @@ quat segment_curve::at(double h) const noexcept {
         }
     }
     return keys_.q0;
+}
+
+motion segment_curve::rates(double h) const noexcept {
+    const segment& k = keys_;
+    const double dt = k.t1 - k.t0;
+    const auto c = [](quat q) { return std::array<double, 4>{q.w, q.x, q.y, q.z}; };
+    const auto q = [](const std::array<double, 4>& v) { return quat{v[0], v[1], v[2], v[3]}; };
+    switch (k.how_) {
+        case method::slerp: return {(1 / dt) * arc_.rotation_vector(), {}};
+        case method::step: return {};
+        case method::nlerp: {
+            // the lerp l and its derivative (q1 - q0) / dt, then normalised
+            const std::array<double, 4> a = c(k.q0), b = c(k.q1);
+            std::array<double, 4> l{}, d{};
+            for (std::size_t j = 0; j < 4; ++j) l[j] = (1 - h) * a[j] + h * b[j], d[j] = (b[j] - a[j]) / dt;
+            if (norm(q(l)) == 0) return {};  // (b = -a at h = 1/2: nlerp holds a there)
+            return motion_of(normalized_jet(quat_jet{q(l), q(d), {0, 0, 0, 0}}));
+        }
+        case method::cubicspline: {
+            // hermite() and its derivatives in h, per second; then normalised
+            const spline_key &a = k.spline0_, &b = k.spline1_;
+            const double s = h, s2 = s * s, s3 = s2 * s;
+            std::array<double, 4> v{}, d1{}, d2{};
+            const auto av = c(a.rotation), ab = c(a.rotation_out), bv = c(b.rotation), ba = c(b.rotation_in);
+            for (std::size_t j = 0; j < 4; ++j) {
+                v[j] = (2 * s3 - 3 * s2 + 1) * av[j] + dt * (s3 - 2 * s2 + s) * ab[j] + (-2 * s3 + 3 * s2) * bv[j] +
+                       dt * (s3 - s2) * ba[j];
+                d1[j] = ((6 * s2 - 6 * s) * (av[j] - bv[j])) / dt + (3 * s2 - 4 * s + 1) * ab[j] + (3 * s2 - 2 * s) * ba[j];
+                d2[j] = ((12 * s - 6) * (av[j] - bv[j])) / (dt * dt) + ((6 * s - 4) * ab[j] + (6 * s - 2) * ba[j]) / dt;
+            }
+            if (!(norm(q(v)) > 0) || !std::isfinite(norm(q(v)))) return {};  // (at() then holds the start)
+            return motion_of(normalized_jet(quat_jet{q(v), q(d1), q(d2)}));
+        }
+        case method::euler: {
+            // from_euler's product of three turns about axes, each angle linear in time
+            quat_jet f[3];
+            for (std::size_t j = 0; j < 3; ++j) {
+                const double angle = (1 - h) * k.e0_[j] + h * k.e1_[j], rate = (k.e1_[j] - k.e0_[j]) / dt;
+                vec3 axis;
+                (k.seq_.axes[j] == 0 ? axis.x : k.seq_.axes[j] == 1 ? axis.y : axis.z) = 1;
+                const quat e = from_axis_angle(axis, angle, angle_unit::radians);
+                const vec3 half_rate = (rate / 2) * axis;
+                f[j] = {e, e * quat{0, half_rate.x, half_rate.y, half_rate.z}, -(rate * rate / 4) * e};
+            }
+            return motion_of(k.seq_.intrinsic ? f[0] * f[1] * f[2] : f[2] * f[1] * f[0]);
+        }
+        case method::squad: {
+            // q = P exp(g phi_C / 2): P and S the inner slerps (constant body
+            // rates wp, ws), C = P* S, g = 2h(1 - h). phi_C's derivatives from
+            // C's motion, then the product's.
+            const vec3 wp = (1 / dt) * arc_.rotation_vector(), ws = (1 / dt) * control_arc_.rotation_vector();
+            const quat C = conjugate(arc_.at(h)) * control_arc_.at(h);
+            const vec3 phi = 2.0 * log(C), wp_in_c = rotate(conjugate(C), wp);
+            const vec3 wc = ws - wp_in_c, ac = cross(wc, wp_in_c);
+            const mat3 jinv = inverse_rate_matrix(phi);
+            const vec3 phi1 = jinv * wc, phi2 = jinv * (ac - rate_curvature(phi, phi1));
+            const double g = 2 * h * (1 - h), g1 = 2 * (1 - 2 * h) / dt, g2 = -4 / (dt * dt);
+            const vec3 e = g * phi, e1 = g1 * phi + g * phi1, e2 = g2 * phi + 2 * g1 * phi1 + g * phi2;
+            const motion inner = motion_of(e, e1, e2);
+            const vec3 u = rotate(conjugate(exp(0.5 * e)), wp);
+            return {u + inner.velocity, cross(u, inner.velocity) + inner.acceleration};
+        }
+        case method::cubic: {
+            const auto p = k.cubic_.derivatives(h);
+            return motion_of(p.phi, p.phi_dot, p.phi_ddot);
+        }
+    }
+    return {};
 }
 
 std::array<double, 4> hermite(const std::array<double, 4>& v0, const std::array<double, 4>& b0,
@@ -119,8 +196,18 @@ segment_builder::segment_builder(method m, path p, const std::optional<euler_seq
     check_method(m, seq);
 }
 
+void segment_builder::clear() noexcept {
+    window_.clear();
+    cubic_.times.clear(), cubic_.keys.clear(), cubic_.rates = {}, cubic_.next = 0;
+}
+
 quat segment_builder::add(const key& k) {
     quat q = k.rotation;
+    if (how_ == method::cubic) {
+        if (!cubic_.keys.empty() && dot(cubic_.keys.back(), q) < 0) q = -q;
+        cubic_.times.push_back(k.time), cubic_.keys.push_back(q);
+        return q;
+    }
     const bool flips = way_ == path::shortest && how_ != method::cubicspline;
     if (flips && !window_.empty() && dot(window_.back().q, q) < 0) q = -q;
     std::array<double, 3> e{};
@@ -136,6 +223,24 @@ quat segment_builder::add(const key& k) {
 }
 
 bool segment_builder::pop(segment& out, bool end) {
+    if (how_ == method::cubic) {
+        // every segment depends on every key: none until the last has come
+        auto& c = cubic_;
+        if (!end || c.next + 1 >= c.keys.size()) return false;
+        if (c.rates.velocity.empty()) {
+            c.rates = spline_key_rates(c.times, c.keys);
+            if (!c.rates.converged)
+                throw spline_error(fmt::format("the cubic spline's equations do not settle in {} rounds (steps near 180 "
+                                               "degrees between keys of very uneven spacing): expected smaller steps, "
+                                               "or another method",
+                                               spline_max_rounds));
+        }
+        const std::size_t i = c.next++;
+        out.how_ = how_;
+        out.t0 = c.times[i], out.t1 = c.times[i + 1], out.q0 = c.keys[i], out.q1 = c.keys[i + 1];
+        out.cubic_ = spline_segment(out.q0, out.q1, out.t1 - out.t0, c.rates.velocity[i], c.rates.velocity[i + 1]);
+        return true;
+    }
     // squad's segment [0, 1] needs key 1's control point, which needs key 2
     const std::size_t needed = how_ == method::squad && !end ? 3 : 2;
     if (window_.size() < needed) return false;

@@ -22,6 +22,10 @@ double norm(vec3 v) noexcept {
     return std::hypot(v.x, v.y, v.z);
 }
 
+quat operator+(quat a, quat b) noexcept { return {a.w + b.w, a.x + b.x, a.y + b.y, a.z + b.z}; }
+
+quat operator*(double s, quat q) noexcept { return {s * q.w, s * q.x, s * q.y, s * q.z}; }
+
 quat operator-(quat q) noexcept { return {-q.w, -q.x, -q.y, -q.z}; }
 
 template <std::size_t N>

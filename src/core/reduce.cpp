@@ -37,6 +37,10 @@ track_reducer::track_reducer(const reduce_options& opts, const std::optional<eul
     if (opts.how == method::cubicspline)
         throw option_error(option::method, "reduce plays keys as slerp, nlerp, squad, step or euler, not cubicspline "
                                            "(a CUBICSPLINE track's tangents belong to the keys it has)");
+    if (opts.how == method::cubic)
+        throw option_error(option::method, "reduce plays keys as slerp, nlerp, squad, step or euler, not cubic "
+                                           "(each of its segments moves with every key, so no key can be dropped "
+                                           "with a guarantee)");
 }
 
 track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, std::optional<std::size_t> before,

@@ -119,7 +119,8 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
       vectors_(carried.any()),
       translation_(opts, opts.translation_how.value_or(opts.how), carried.translation),
       scale_(opts, opts.scale_how.value_or(opts.how), carried.scale),
-      weights_(opts, opts.weights_how.value_or(opts.how), carried.weights > 0) {}
+      weights_(opts, opts.weights_how.value_or(opts.how), carried.weights > 0),
+      rates_(opts.velocity || opts.acceleration) {}
 
 void track_resampler::add(const key& k) {
     if (!started_) {
@@ -161,12 +162,29 @@ void track_resampler::frames_of(const segment& s) {
     const auto tolerance = [this](double key_time) { return keyrot::tolerance(key_time, opts_); };
     const auto in_segment = [&] { return time() <= s.t1 - tolerance(s.t1); };
     const double from_start = std::fabs(time() - s.t0);
-    if (from_start <= tolerance(s.t0) && from_start <= std::fabs(time() - s.t1)) out(next_frame_, s.q0), ++next_frame_;
+    const bool at_start = from_start <= tolerance(s.t0) && from_start <= std::fabs(time() - s.t1);
+    if (rates_) return rated_frames_of(s, at_start);
+    if (at_start) out(next_frame_, s.q0), ++next_frame_;
     // Dense keys (motion capture at 120 Hz, say) leave most segments without
     // a frame inside: they never set up a curve.
     if (!in_segment()) return;
     const segment_curve curve = s.curve();
     for (; in_segment(); ++next_frame_) out(next_frame_, curve.at((time() - s.t0) / (s.t1 - s.t0)));
+}
+
+void track_resampler::rated_frames_of(const segment& s, bool at_start) {
+    // as frames_of, each frame's rates set before it goes out; every
+    // segment's curve is set up, for its last rates at least
+    const auto time = [this] { return next_frame_ / opts_.fps; };
+    const double end = s.t1 - keyrot::tolerance(s.t1, opts_);
+    const segment_curve curve = s.curve();
+    if (at_start) rates_now_ = curve.rates(0), out(next_frame_, s.q0), ++next_frame_;
+    for (; time() <= end; ++next_frame_) {
+        const double h = (time() - s.t0) / (s.t1 - s.t0);
+        rates_now_ = curve.rates(h);
+        out(next_frame_, curve.at(h));
+    }
+    rates_now_ = curve.rates(1);  // the last key's, should no segment follow
 }
 
 void track_resampler::frames_until(double time, quat q) {
@@ -181,22 +199,38 @@ void track_resampler::out(double frame, quat q) {
     s.frame = frame;
     s.time = frame / opts_.fps;
     s.rotation = q;
+    if (rates_) return rated_out(s);
     if (!vectors_) {
         emit_(s);
         return;
     }
-    pending_.push_back(s);
+    pending_.push_back({s, {}});
+    resolve_vectors(false);
+}
+
+void track_resampler::rated_out(sample& s) {
+    const motion m = opts_.rates_frame == motion_frame::fixed ? in_fixed_frame(s.rotation, rates_now_) : rates_now_;
+    frame_rates rates;
+    if (opts_.velocity) rates.velocity = m.velocity;
+    if (opts_.acceleration) rates.acceleration = m.acceleration;
+    if (!vectors_) {
+        rates_out_ = rates, s.rates = &rates_out_;
+        emit_(s);
+        return;
+    }
+    pending_.push_back({s, rates});
     resolve_vectors(false);
 }
 
 void track_resampler::resolve_vectors(bool end) {
     while (!pending_.empty()) {
-        sample& s = pending_.front();
+        sample& s = pending_.front().s;
         std::optional<morph_weights> w;
         if (!translation_.at(s.time, end, s.translation) || !scale_.at(s.time, end, s.scale) ||
             !weights_.at(s.time, end, w))
             return;
         if (w) s.weights = weights_now_ = std::move(*w);
+        if (rates_) rates_out_ = pending_.front().rates, s.rates = &rates_out_;
         emit_(s);
         pending_.pop_front();
     }

@@ -24,11 +24,11 @@ _keyrot() {
     local interpolation="--method --path"
     local flags
     case $command in
-        resample) flags="--output-dir --jobs $input $output $interpolation --fps --max-frames" ;;
+        resample) flags="--output-dir --jobs $input $output $interpolation --fps --max-frames --velocity --acceleration --velocity-frame" ;;
         convert) flags="--output-dir --jobs $input $output" ;;
         slerp) flags="-t --steps --max-frames --from-rep $interpolation $output" ;;
         compare) flags="--tol --tol-translation --ignore-extra --report -o --output --fsync $input $conventions" ;;
-        info) flags="-o --output --fsync --to --precision --segments $input $conventions" ;;
+        info) flags="-o --output --fsync --to --precision --segments $interpolation $input $conventions" ;;
         reduce) flags="--output-dir --jobs $input $output $interpolation --tol --tol-translation --report" ;;
         help) flags="" ;;
         *) flags="--version" ;;
@@ -42,7 +42,8 @@ _keyrot() {
         --to) [[ $command == info ]] && values="json" || values="csv json ndjson gltf glb bvh" ;;
         --rep) values="axis-angle quat rotvec euler matrix matrix4" ;;
         --from-rep) values="quat axis-angle rotvec euler" ;;
-        --method) values="slerp nlerp squad step euler" ;;
+        --method) values="slerp nlerp squad step euler cubic" ;;
+        --velocity-frame) values="body world" ;;
         --path) values="shortest direct" ;;
         --quat-order) values="wxyz xyzw" ;;
         --report) [[ $command == compare ]] && values="csv json" || values="json" ;;

@@ -69,6 +69,7 @@ public:
     void row(const table_row& s) override {
         table_row r = s;
         r.euler = previous_ ? continuous_euler(s.rotation, seq_, *previous_) : to_euler(s.rotation, seq_).angles;
+        r.continuous = true;
         previous_ = r.euler;
         rows_->row(r);
     }

@@ -156,7 +156,7 @@ TEST_CASE("command-line checks") {
     CHECK(usage({"resample", "--fps", "-24"}).find("--fps") != std::string::npos);
     CHECK(usage({"resample", "--fps", "nan"}).find("--fps") != std::string::npos);
     CHECK(usage({"resample", "--fps", "inf"}).find("--fps") != std::string::npos);
-    CHECK(usage({"resample", "--method", "cubic"}).find("--method") != std::string::npos);
+    CHECK(usage({"resample", "--method", "bicubic"}).find("--method") != std::string::npos);
     CHECK(usage({"resample", "--rep", "quaternion"}).find("--rep") != std::string::npos);
     CHECK(usage({"resample", "--precision", "18"}) == "--precision: expected 0 to 17 digits, got 18");
     CHECK(usage({"resample", "--euler", "XXY"}).find("--euler: expected three axes") == 0);

@@ -100,6 +100,7 @@ struct table_info {
     std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
     std::optional<double> fps;              ///< the rate `frame` counts at, when rows have frames
     std::optional<std::string_view> method;  ///< the interpolation's name, for a resampled table
+    bool velocity = false, acceleration = false;  ///< rows may carry them (frame_rates)
     bool operator==(const table_info&) const = default;
 };
 
@@ -107,8 +108,12 @@ struct table_info {
 /// what only the writers need of it.
 struct table_row : sample {
     bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
-    /// Euler output with --euler-continuous: the angles to write (radians).
-    std::optional<std::array<double, 3>> euler = std::nullopt;
+    /// Euler output with --euler-continuous: the angles to write (radians),
+    /// where `continuous`. (A flag and an array rather than an optional:
+    /// rows a whole number of cache lines long made the formatting threads
+    /// wait on memory; docs/design.md.)
+    bool continuous = false;
+    std::array<double, 3> euler{};
     /// A CUBICSPLINE key's tangents, where the row is that key (convert),
     /// held as the weights are: a glTF output writes them beside it.
     const full_spline_key* spline = nullptr;

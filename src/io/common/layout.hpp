@@ -25,6 +25,10 @@ struct bvh_source;
 std::span<const std::string_view> rotation_columns(rep r, quat_order order) noexcept;
 inline constexpr std::array<std::string_view, 3> translation_columns = {"tx", "ty", "tz"};
 inline constexpr std::array<std::string_view, 3> scale_columns = {"sx", "sy", "sz"};
+/// The angular velocity and acceleration (resample --velocity, --acceleration).
+inline constexpr std::array<std::string_view, 3> velocity_columns = {"wx", "wy", "wz"};
+inline constexpr std::array<std::string_view, 3> acceleration_columns = {"dwx", "dwy", "dwz"};
+inline constexpr std::string_view velocity_member = "angular_velocity", acceleration_member = "angular_acceleration";
 /// The CSV column of morph weight `i`: "w0", "w1", ...
 std::string weight_column(std::size_t i);
 

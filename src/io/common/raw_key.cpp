@@ -76,6 +76,11 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     out.translation = k.translation;
     out.scale = k.scale;
     if (!k.weights.empty()) out.weights = k.weights;
+    const auto radians = [&](const std::optional<vec3>& v) -> std::optional<vec3> {
+        if (!v) return std::nullopt;
+        return vec3{to_radians(v->x, s.angles), to_radians(v->y, s.angles), to_radians(v->z, s.angles)};
+    };
+    out.rates = {radians(k.rates.velocity), radians(k.rates.acceleration)};
     if (k.spline) out.spline = std::make_shared<const full_spline_key>(*k.spline);
     // A row with both is a frame of keyrot's own output, at whatever rate it
     // was made: its time times it, its frame is kept as a label (compare

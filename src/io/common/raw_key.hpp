@@ -22,6 +22,7 @@ struct raw_key {
     std::array<double, 16> values{};  ///< as many as `kind` needs
     std::optional<vec3> translation, scale;
     morph_weights weights;
+    frame_rates rates;  ///< in the file's angle unit per second
     std::string unknown;  ///< a JSON key's first field that keyrot does not read, if any
     std::optional<full_spline_key> spline;  ///< glTF CUBICSPLINE keys only
 
@@ -36,6 +37,7 @@ struct raw_key {
         values.fill(0);
         translation.reset(), scale.reset();
         weights.clear();
+        rates = {};
         unknown.clear();
         spline.reset();
     }

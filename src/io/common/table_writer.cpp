@@ -9,8 +9,12 @@
 
 namespace keyrot {
 
+vec3 rate_values(vec3 radians, const write_options& opts) {
+    return {from_radians(radians.x, opts.angles), from_radians(radians.y, opts.angles), from_radians(radians.z, opts.angles)};
+}
+
 rotation_values row_values(const table_row& s, const write_options& opts, warnings& warn) {
-    const rotation_values r = values_of(s.rotation, s.translation, opts, s.euler);
+    const rotation_values r = values_of(s.rotation, s.translation, opts, s.continuous ? std::optional(s.euler) : std::nullopt);
     if (r.gimbal_lock)
         warn.once("gimbal", fmt::format("gimbal lock in Euler sequence {}: the third angle is set to 0", opts.euler->name));
     return r;
@@ -25,7 +29,8 @@ std::string settings_members(const table_info& info, const write_options& opts, 
     const bool counted = f == format::csv ? info.times == time_columns::as_given && info.all_frames && !info.any_time
                                           : info.counted;
     const rep r = opts.representation;
-    const bool angles = r == rep::axis_angle || r == rep::rotvec || r == rep::euler;
+    // (an angular velocity or acceleration is an angle per second)
+    const bool angles = r == rep::axis_angle || r == rep::rotvec || r == rep::euler || info.velocity || info.acceleration;
     const bool arrays = f != format::csv;  // (CSV names its quaternion columns)
     std::vector<std::string> members;
     if (info.fps && (all || (counted && *info.fps != default_key_fps))) {

@@ -25,6 +25,10 @@ public:
 /// A row's rotation values; Euler output warns once about gimbal lock.
 rotation_values row_values(const table_row& s, const write_options& opts, warnings& warn);
 
+/// An angular velocity or acceleration (radians per second) in the output's
+/// angle unit per second.
+vec3 rate_values(vec3 radians, const write_options& opts);
+
 /// What an output of format `f` states about itself, as the members of a
 /// JSON object: a JSON document's first fields, an NDJSON header line, a
 /// CSV "# keyrot" line. With settings_line::always (a JSON document's), all

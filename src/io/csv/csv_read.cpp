@@ -95,6 +95,7 @@ struct columns {
     std::vector<std::size_t> rotation;  // in (w, x, y, z) order for quaternions
     std::optional<std::array<std::size_t, 3>> translation, scale;
     std::vector<std::size_t> weights;  // w0, w1, ...
+    std::optional<std::array<std::size_t, 3>> velocity, acceleration;
 };
 
 std::string column_list(rep r) {
@@ -185,6 +186,8 @@ columns parse_header(const std::vector<std::string_view>& cells, char separator,
     if (cols.translation && cols.kind == rep::matrix4)
         throw input_error(where, "4x4 matrix and tx ty tz columns: expected one translation per key");
     cols.scale = vector_columns(scale_columns, "scale");
+    cols.velocity = vector_columns(velocity_columns, "angular velocity");
+    cols.acceleration = vector_columns(acceleration_columns, "angular acceleration");
     for (std::size_t n = 0; n < index.size(); ++n) {  // w0 ... wN-1, one after another
         const auto at = claim(weight_column(n));
         if (!at) break;
@@ -258,6 +261,7 @@ public:
         };
         k.translation = vector(cols_.translation, translation_columns);
         k.scale = vector(cols_.scale, scale_columns);
+        k.rates = {vector(cols_.velocity, velocity_columns), vector(cols_.acceleration, acceleration_columns)};
         // A track with fewer morph targets than the table's columns leaves the last of them empty.
         for (std::size_t i = 0; i < cols_.weights.size(); ++i) {
             if (empty_cell(cells, cols_.weights[i])) continue;
@@ -312,6 +316,8 @@ private:
         if (const auto& t = cols_.translation) k.translation = vec3{cell[(*t)[0]], cell[(*t)[1]], cell[(*t)[2]]};
         if (const auto& s = cols_.scale) k.scale = vec3{cell[(*s)[0]], cell[(*s)[1]], cell[(*s)[2]]};
         for (const std::size_t w : cols_.weights) k.weights.push_back(cell[w]);
+        if (const auto& v = cols_.velocity) k.rates.velocity = vec3{cell[(*v)[0]], cell[(*v)[1]], cell[(*v)[2]]};
+        if (const auto& a = cols_.acceleration) k.rates.acceleration = vec3{cell[(*a)[0]], cell[(*a)[1]], cell[(*a)[2]]};
         track = name;
         return true;
     }

@@ -44,6 +44,10 @@ public:
         if (scale_)
             for (auto c : scale_columns) header.emplace_back(c);
         for (std::size_t i = 0; i < weights_; ++i) header.push_back(weight_column(i));
+        if (info.velocity)
+            for (auto c : velocity_columns) header.emplace_back(c);
+        if (info.acceleration)
+            for (auto c : acceleration_columns) header.emplace_back(c);
         // The settings line only where it is needed: other CSV readers take it for the header.
         const std::string settings = settings_members(info, opts, opts.states, format::csv);
         if (!settings.empty()) fmt::format_to(std::back_inserter(out_), "{}{{{}}}\n", csv_settings_comment, settings);
@@ -85,6 +89,13 @@ public:
             if (i < s.weights.size()) cell(s.weights[i], opts_.precision);
             else text.put(',');
         }
+        const auto rate = [&](const std::optional<vec3>& v) {
+            if (!v) return text.put(",,,");
+            const vec3 w = rate_values(*v, opts_);
+            for (double x : {w.x, w.y, w.z}) cell(x, opts_.precision);
+        };
+        if (info_.velocity) rate(s.rates ? s.rates->velocity : std::nullopt);
+        if (info_.acceleration) rate(s.rates ? s.rates->acceleration : std::nullopt);
         text.put('\n');
         text.flush();
     }

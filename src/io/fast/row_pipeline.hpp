@@ -55,6 +55,7 @@ public:
         batch_.rows.back().spline = nullptr;  // (a table has no place for it, and it lives as long as this call)
         // The weights the row views live as long as this call: the batch keeps them (format() views them there).
         if (!s.weights.empty()) batch_.weights.insert(batch_.weights.end(), s.weights.begin(), s.weights.end());
+        if (s.rates) batch_.rates.push_back(*s.rates);  // (likewise)
         if (batch_.rows.size() == batch_rows) hand_over();
     }
     void finish() {
@@ -78,6 +79,7 @@ private:
         std::optional<track_begin> resumed;  // the track the rows before the first begin belong to
         std::vector<table_row> rows;
         std::vector<double> weights;  // the rows' morph weights, one after another
+        std::vector<frame_rates> rates;  // the rows' angular velocities and accelerations, likewise
         std::vector<track_begin> begins;
     };
     struct worker {
@@ -162,18 +164,19 @@ private:
     void format(const batch& b, worker& w) {
         table_writer& writer = w.own ? *w.own : writer_;
         if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->carried);
-        std::size_t next_begin = 0, weights = 0;
-        const bool weighted = !b.weights.empty();
+        std::size_t next_begin = 0, weights = 0, rates = 0;
+        const bool weighted = !b.weights.empty() || !b.rates.empty();
         for (std::size_t i = 0; i <= b.rows.size(); ++i) {
             for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
                 writer.begin_track(b.begins[next_begin].name, b.begins[next_begin].carried);
             if (i == b.rows.size()) break;
-            if (!weighted || b.rows[i].weights.empty()) {
+            if (!weighted || (b.rows[i].weights.empty() && !b.rows[i].rates)) {
                 writer.row(b.rows[i]);
             } else {
                 table_row s = b.rows[i];
                 s.weights = std::span(b.weights).subspan(weights, s.weights.size());
                 weights += s.weights.size();
+                if (s.rates) s.rates = &b.rates[rates++];
                 writer.row(s);
             }
             if (!w.own) out_.maybe_flush();

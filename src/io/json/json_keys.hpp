@@ -48,9 +48,10 @@ public:
                    matrix = obj_.member(rotation_member(rep::matrix)), angle = obj_.member(angle_member);
         const int rotations = !!quat + !!axis + !!rotvec + !!euler + !!matrix;
         const auto translation = obj_.member("translation"), scale = obj_.member("scale"),
-                   weights = obj_.member("weights");
+                   weights = obj_.member("weights"), velocity = obj_.member(velocity_member),
+                   acceleration = obj_.member(acceleration_member);
         // Counting the members read finds one that is not, without a look at each.
-        const int read = !!k.time + !!k.frame + rotations + !!angle + !!translation + !!scale + !!weights +
+        const int read = !!k.time + !!k.frame + rotations + !!angle + !!translation + !!scale + !!weights + !!velocity + !!acceleration +
                          obj_.member("track").has_value();
         if (obj_.size() > static_cast<std::size_t>(read)) k.unknown = first_unknown_member();
         if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
@@ -95,6 +96,7 @@ public:
         };
         k.translation = vector(translation, "translation");
         k.scale = vector(scale, "scale");
+        k.rates = {vector(velocity, velocity_member.data()), vector(acceleration, acceleration_member.data())};
         if (weights) {
             if (!weights->is_array() || weights->size() == 0)
                 fail(fmt::format("'weights': expected an array of numbers, one per morph target, got {}",

@@ -47,6 +47,7 @@ inline constexpr std::array<std::string_view, 5> rotation_members = {
 /// an error with --strict).
 inline constexpr auto key_members =
     detail::joined(time_members, rotation_members,
-                   std::array<std::string_view, 5>{angle_member, "translation", "scale", "track", "weights"});
+                   std::array<std::string_view, 7>{angle_member, "translation", "scale", "track", "weights",
+                                                   velocity_member, acceleration_member});
 
 }  // namespace keyrot

@@ -67,6 +67,15 @@ public:
         }
         if (s.scale) text.put(", \"scale\": "), array(text, {s.scale->x, s.scale->y, s.scale->z});
         if (!s.weights.empty()) text.put(", \"weights\": "), array(text, s.weights.data(), s.weights.size());
+        if (s.rates) {
+            const auto rate = [&](const std::optional<vec3>& v, std::string_view member) {
+                if (!v) return;
+                const vec3 r = rate_values(*v, opts_);
+                text.put(", \""), text.put(member), text.put("\": "), array(text, {r.x, r.y, r.z});
+            };
+            rate(s.rates->velocity, velocity_member);
+            rate(s.rates->acceleration, acceleration_member);
+        }
         text.put(lines_ ? "}\n" : "}");
         text.flush();
     }
