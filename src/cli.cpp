@@ -206,12 +206,10 @@ void define_resample(CLI::App& sub, options& o, raw_flags& f) {
                    fmt::format("most frames a track may make (default {:.0f}: {:.0f} hours at {} fps)", o.max_frames,
                                o.max_frames / o.fps / 3600, o.fps));
     sub.option_defaults()->group("Velocity");
-    sub.add_flag("--velocity", o.velocity,
-                 "add each frame's angular velocity (wx wy wz, the output angle unit per second) of the curve played");
+    sub.add_flag("--velocity", o.velocity, "add each frame's angular velocity (wx wy wz, output angle unit per second)");
     sub.add_flag("--acceleration", o.acceleration, "add its angular acceleration (dwx dwy dwz, per second squared)");
     sub.add_option("--velocity-frame", f.velocity_frame,
-                   "body: about the object's own axes, as a gyroscope on it reads; world: about the fixed axes "
-                   "(default: body)")
+                   "body: about the object's own axes, as a gyroscope reads; world: the fixed axes (default: body)")
         ->check(CLI::IsMember(names<motion_frame>()));
     sub.footer(R"(Examples:
   keyrot resample walk.csv --fps 30 -o walk30.json
@@ -261,6 +259,9 @@ void define_compare(CLI::App& sub, options& o, raw_flags& f) {
                                o.tol_deg));
     sub.add_option("--tol-translation", o.tol_translation,
                    fmt::format("largest translation, scale or morph weight difference (default {})", o.tol_translation));
+    sub.add_option("--tol-velocity", o.tol_velocity, "largest angular velocity difference, deg/s (default: not compared)");
+    sub.add_option("--tol-acceleration", o.tol_acceleration,
+                   "largest angular acceleration difference, deg/s^2 (default: not compared)");
     sub.add_flag("--ignore-extra", f.ignore_extra,
                  "grade only the rows the key has: rows and tracks only an answer has are counted, not failed");
     sub.option_defaults()->group("Output");
@@ -484,7 +485,9 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
         if (subs[i]->parsed()) o.cmd = commands[i].cmd;
     finish(o, f);
     if (o.cmd == command::compare || o.cmd == command::reduce)
-        for (const auto& [flag, tol] : {std::pair("--tol", o.tol_deg), std::pair("--tol-translation", o.tol_translation)})
+        for (const auto& [flag, tol] : {std::pair("--tol", o.tol_deg), std::pair("--tol-translation", o.tol_translation),
+                                        std::pair("--tol-velocity", o.tol_velocity.value_or(0)),
+                                        std::pair("--tol-acceleration", o.tol_acceleration.value_or(0))})
             if (!(std::isfinite(tol) && tol >= 0))
                 throw usage_error(fmt::format("{}: expected a tolerance of 0 or more, got {}", flag, tol));
     if (o.cmd == command::reduce && o.report && !o.output && !o.output_dir)

@@ -22,6 +22,7 @@ angular velocity and acceleration against finite differences of its frames.
 Usage: motion_test.py KEYROT DATA_DIR. Exit 0 when all pass, 1 otherwise; 77
 (skip) without numpy and scipy.
 """
+import csv
 import io
 import json
 import os
@@ -137,8 +138,11 @@ times = np.cumsum(rng.uniform(0.05, 0.5, 25))
 against_scipy("uneven keys", times, random_rotations(rng, 25, 120), 30)
 times = np.cumsum(rng.uniform(0.1, 0.3, 12))
 against_scipy("near-180-degree steps", times, random_rotations(rng, 12, 179), 60)
-times = np.arange(4000) / 120 + rng.uniform(0, 1e-3, 4000)
-against_scipy("a long track", times, random_rotations(rng, 4000, 8), 24)
+# longer than a stretch keyrot solves at once (4,096 keys and 256 of look-ahead): the stretches' joins
+times = np.arange(12000) / 120 + rng.uniform(0, 1e-3, 12000)
+against_scipy("a long track (three stretches)", times, random_rotations(rng, 12000, 8), 24)
+times = np.cumsum(rng.uniform(0.01, 0.5, 9000))
+against_scipy("a long track of large uneven steps", times, random_rotations(rng, 9000, 60), 2)
 # the joints of a captured take
 bvh = run("convert", os.path.join(DATA, "capture.bvh"), "--rep", "quat", "--to", "csv")
 check(bvh.returncode == 0, f"convert capture.bvh: {bvh.stderr}")
@@ -299,6 +303,25 @@ with tempfile.TemporaryDirectory() as tmp:
     run("resample", src, "--method", "cubic", "-o", plain)
     r = run("compare", plain, made["csv"])
     check(r.returncode == 0, f"compare of frames with and without velocities: {r.stdout} {r.stderr}")
+    # ... unless asked: the velocities then count, and their differences are reported
+    r = run("compare", made["csv"], made["json"], "--tol-velocity", "1e-9", "--tol-acceleration", "1e-9")
+    check(r.returncode == 0, f"compare --tol-velocity of the same frames: {r.stdout} {r.stderr}")
+    other = os.path.join(tmp, "nlerp.csv")
+    run("resample", src, "--method", "nlerp", "--velocity", "--acceleration", "-o", other)
+    r = run("compare", made["csv"], other, "--tol", "360", "--tol-velocity", "0.5", "--report", "csv")
+    rows = list(csv.DictReader(io.StringIO(r.stdout)))
+    check(r.returncode == 1 and "velocity_difference" in rows[0] and "acceleration_difference" not in rows[0]
+          and any("angular velocity differs by" in row["reason"] for row in rows),
+          f"compare --tol-velocity of cubic against nlerp: {r.stdout[:300]} {r.stderr}")
+    largest = max(float(row["velocity_difference"]) for row in rows)
+    _, a_cubic = table(run("convert", made["csv"], "--rep", "quat", "--to", "csv").stdout)
+    _, a_nlerp = table(run("convert", other, "--rep", "quat", "--to", "csv").stdout)
+    expected_largest = np.linalg.norm(a_cubic[:, -6:-3] - a_nlerp[:, -6:-3], axis=1).max()
+    check(abs(largest - expected_largest) <= 1e-9 * expected_largest,
+          f"velocity_difference {largest} against numpy's {expected_largest}")
+    r = run("compare", made["csv"], plain, "--tol-velocity", "1")
+    check(r.returncode == 1 and "angular velocity missing from ACTUAL" in r.stderr,
+          f"compare --tol-velocity against frames without: {r.stderr}")
     # resample of frames with velocities says it does not keep them
     r = run("resample", made["csv"], "--fps", "10")
     check(r.returncode == 0 and "ignoring the angular velocity" in r.stderr and "wx" not in r.stdout.splitlines()[0],

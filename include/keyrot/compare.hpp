@@ -18,6 +18,9 @@ struct tolerances {
     /// Euclidean distance, of translations and of scales; and the largest
     /// difference of a morph weight.
     double translation = 0.001;
+    /// The angular velocity's and acceleration's (deg/s, deg/s^2), where
+    /// asked: rows whose EXPECTED has them (resample --velocity) compared.
+    std::optional<double> velocity = std::nullopt, acceleration = std::nullopt;
 };
 
 /// One row of the report: a key of EXPECTED, of ACTUAL, or a matched pair.
@@ -31,6 +34,8 @@ struct row_difference {
     std::optional<double> weights;      ///< the largest difference of a morph weight, when both have them
     std::string problem;                ///< why it failed ("only in ACTUAL", ...); empty if it passed
     bool extra = false;                 ///< a row of ACTUAL that EXPECTED has not
+    /// |w - w'| (deg/s) and |a - a'| (deg/s^2), where asked and both have them.
+    std::optional<double> velocity = std::nullopt, acceleration = std::nullopt;
     bool pass() const { return problem.empty(); }
 };
 

@@ -115,9 +115,12 @@ private:
 /// set by the path (cubicspline keeps the file's, which its tangents are
 /// of; cubic always turns the short way, as scipy's RotationSpline does),
 /// squad's control points (one key of look-ahead), Euler angles for
-/// --method euler. Memory stays a few keys, but for cubic, whose segments
-/// all depend on every key: it keeps the track's times and rotations
-/// (and, while solving, spline_key_rates' system) and gives its segments at the end.
+/// --method euler. Memory stays a few keys, but for cubic: its segments all
+/// depend on every key, with an influence that falls off geometrically, so
+/// it solves the spline a stretch of cubic_stretch keys at a time, each
+/// with cubic_margin keys of look-ahead whose velocities it leaves to the
+/// next stretch (docs/design.md: their effect is far below rounding), and
+/// holds that many keys.
 class segment_builder {
 public:
     /// Throws option_error for method::euler without a sequence.
@@ -143,13 +146,19 @@ private:
     path way_;
     std::optional<euler_seq> seq_;
     std::vector<entry> window_;  // at most three keys
+    bool solve_stretch(bool end);  // cubic: the next stretch's velocities; false if it must wait
     struct {
-        std::vector<double> times;
+        std::vector<double> times;  // the keys from `first` on (global indices)
         std::vector<quat> keys;
-        spline_rates rates;  // once solved
+        std::vector<vec3> velocity;  // final before `final`, first guesses after
+        std::size_t first = 0, final = 0;
         std::size_t next = 0;  // the segment pop() gives next
+        spline_solver solver;
     } cubic_;
 };
+
+/// cubic's stretches: keys solved at once, and the keys of look-ahead each leaves to the next.
+inline constexpr std::size_t cubic_stretch = 4096, cubic_margin = 256;
 
 /// A whole track's curve, for callers that have all its keys.
 class rotation_curve {

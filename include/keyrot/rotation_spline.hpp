@@ -3,6 +3,7 @@
 // (--method cubic): the curve of scipy's RotationSpline, after N. Mayorov,
 // "Smooth attitude interpolation" (2019).
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -10,27 +11,51 @@
 
 namespace keyrot {
 
-/// The body-frame angular velocity (radians per second) at each key of the
-/// rotation spline through `keys` at `times`. On each segment the rotation
-/// is key i times exp(phi(t)), phi a cubic in t - t_i with phi(t_i) = 0,
-/// ending at the segment's rotation vector the short way, with the
-/// velocities given at both keys; inner keys' velocities make the angular
-/// acceleration continuous, the first and last keys' are the first and last
-/// segments' mean rates. Two keys: that mean rate at both (slerp).
-/// The equations are non-linear; solved as scipy does (a block tridiagonal
-/// system, repeated with the curvature term of the last solution), or by
-/// Newton's method where that converges slowly, until no velocity moves by
-/// more than 1e-13 (1 + |w|) rad/s, or at most spline_max_rounds times.
-/// Holds about 600 bytes a key while it solves. Preconditions: at least
-/// two keys, times strictly increasing, keys unit.
+/// How a solve of the spline's equations went.
+struct spline_status {
+    bool converged = true;  ///< within the bound below
+    int rounds = 0;         ///< how many the solution took
+};
+
+inline constexpr int spline_max_rounds = 100;
+
+/// The rotation spline through keys: on each segment the rotation is key i
+/// times exp(phi(t)), phi a cubic in t - t_i with phi(t_i) = 0, ending at
+/// the segment's rotation vector the short way, with the body-frame angular
+/// velocities (radians per second) given at both keys. The inner keys'
+/// velocities make the angular acceleration continuous; the first and last
+/// keys' are fixed. The equations are non-linear; solved as scipy does (a
+/// block tridiagonal system, repeated with the curvature term of the last
+/// solution), or by Newton's method where that converges slowly, until no
+/// velocity moves by more than 1e-13 (1 + |w|) rad/s, or at most
+/// spline_max_rounds times. It keeps its buffers from stretch to stretch
+/// (a copy starts without them).
+class spline_solver {
+public:
+    spline_solver();
+    ~spline_solver();
+    spline_solver(const spline_solver&);
+    spline_solver& operator=(const spline_solver&);
+    /// `velocity`: one per key, the first and last fixed, the others a
+    /// first guess, solved in place. Preconditions: at least three keys,
+    /// times strictly increasing, keys unit.
+    spline_status solve(std::span<const double> times, std::span<const quat> keys, std::span<vec3> velocity);
+
+private:
+    struct workspace;
+    std::unique_ptr<workspace> work_;
+};
+
+/// A whole track's spline, its end velocities the first and last segments'
+/// mean rates (scipy's RotationSpline): the velocity at each key. Two keys: the mean rate at both (slerp).
 struct spline_rates {
-    std::vector<vec3> velocity;  ///< one per key
-    bool converged = true;       ///< within the bound above
-    int rounds = 0;              ///< how many the solution took
+    std::vector<vec3> velocity;
+    spline_status status;
 };
 spline_rates spline_key_rates(std::span<const double> times, std::span<const quat> keys);
 
-inline constexpr int spline_max_rounds = 100;
+/// The mean rate (rotation vector per second) from key a to key b, `seconds` later, the short way.
+vec3 mean_rate(quat a, quat b, double seconds) noexcept;
 
 /// A segment of the spline: key q0 at t0 to key q1 = q0 exp(phi) at t0 + dt,
 /// with velocities w0 and w1 at its keys.

@@ -58,6 +58,7 @@ struct options {
     // compare, reduce
     double tol_deg = 0.01;
     double tol_translation = 0.001;
+    std::optional<double> tol_velocity, tol_acceleration;  ///< compare --tol-velocity, --tol-acceleration
     std::optional<format> report;  ///< --report csv|json
     extra_rows extra = extra_rows::fail;  ///< compare --ignore-extra: allowed
 

@@ -185,9 +185,11 @@ public:
                                           whole_tracks_.size() - max_reasons));
         weights_ = c.weights;
         if (o_.report == format::csv)
-            to_->write(fmt::format("track,frame,time,difference,translation_difference,scale_difference,{}extra,pass,"
-                                   "reason\n",
-                                   weights_ ? "weights_difference," : ""));
+            to_->write(fmt::format("track,frame,time,difference,translation_difference,scale_difference,{}{}{}extra,"
+                                   "pass,reason\n",
+                                   weights_ ? "weights_difference," : "",
+                                   o_.tol_velocity ? "velocity_difference," : "",
+                                   o_.tol_acceleration ? "acceleration_difference," : ""));
         else if (o_.report == format::json)
             to_->write("{\"entries\": [");
     }
@@ -233,6 +235,8 @@ private:
         line += fmt::format(",{},{},{},{},{},", number_text(r.frame), number_text(r.time), number_text(r.angle_deg),
                             number_text(r.translation), number_text(r.scale));
         if (weights_) line += number_text(r.weights) + ',';
+        if (o_.tol_velocity) line += number_text(r.velocity) + ',';
+        if (o_.tol_acceleration) line += number_text(r.acceleration) + ',';
         line += fmt::format("{},{},", r.extra, r.pass());
         append_csv_cell(line, r.problem);
         to_->write(line + '\n');
@@ -243,6 +247,8 @@ private:
         if (r.translation) entry.number("translation_difference", r.translation);
         if (r.scale) entry.number("scale_difference", r.scale);
         if (r.weights) entry.number("weights_difference", r.weights);
+        if (r.velocity) entry.number("velocity_difference", r.velocity);
+        if (r.acceleration) entry.number("acceleration_difference", r.acceleration);
         if (r.extra) entry.flag("extra", true);
         entry.flag("pass", r.pass());
         if (!r.pass()) entry.text("reason", r.problem);
@@ -400,7 +406,7 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
         warnings warn(err, src.source());
         grades.push_back(grade_answer(o, key_src, key, src, survey_answer(o, src, warn)));
     }
-    const tolerances tol{o.tol_deg, o.tol_translation};
+    const tolerances tol{o.tol_deg, o.tol_translation, o.tol_velocity, o.tol_acceleration};
     if (o.report == format::json) emit(o, grade_table_json(key.source, grades, tol), out);
     else if (o.report == format::csv) emit(o, grade_table_csv(grades), out);
     else emit(o, grade_table_text(grades), out);

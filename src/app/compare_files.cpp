@@ -40,7 +40,8 @@ comparison_summary compare_files(const options& key_flags, const input_source& k
     };
     key_stream expected = open(key_flags, key_src, key, key_warn);
     key_stream actual = open(answer_flags, answer_src, answer, answer_warn);
-    comparer c(key.tracks, answer.tracks, {key_flags.tol_deg, key_flags.tol_translation}, key_flags.extra, row);
+    comparer c(key.tracks, answer.tracks, {key_flags.tol_deg, key_flags.tol_translation, key_flags.tol_velocity, key_flags.tol_acceleration},
+               key_flags.extra, row);
     if (begin) begin(c.summary());
     // Read from the file whose keys do not wait for the other's: files of
     // one layout then hold a key or two each; another layout holds what it

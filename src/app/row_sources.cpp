@@ -128,17 +128,10 @@ public:
             throw unsettled(track_, first_.value_or(location{}), e);
         }
     }
-    /// A cubic spline is solved at its track's end: to standard output, before the first row.
-    bool checks_tracks() const override { return method_given_ && opts_.how == method::cubic; }
-    void check_track(const std::string& name, std::span<const key> keys) const override {
-        segment_builder builder(method::cubic, path::shortest, std::nullopt);
-        for (const key& k : keys) builder.add(k);
-        try {
-            segment s;
-            builder.pop(s, true);
-        } catch (const spline_error& e) {
-            throw unsettled(name, keys.front().at, e);
-        }
+    /// A cubic spline is solved as its keys come: to standard output, once before the first row.
+    std::unique_ptr<track_check> check_track(const std::string& name) const override {
+        if (!method_given_ || opts_.how != method::cubic) return nullptr;
+        return std::make_unique<spline_check>(*this, name);
     }
 
 private:
@@ -146,6 +139,31 @@ private:
         return input_error(where(source_, first),
                            fmt::format("{}{}", track.empty() ? "" : fmt::format("track '{}': ", track), e.what()));
     }
+    class spline_check final : public track_check {
+    public:
+        spline_check(const frame_rows& rows, std::string name) : rows_(rows), name_(std::move(name)) {}
+        void add(const key& k) override {
+            if (!first_) first_ = k.at;
+            builder_.add(k);
+            drain(false);
+        }
+        void finish() override { drain(true); }
+
+    private:
+        void drain(bool end) {
+            try {
+                segment s;
+                while (builder_.pop(s, end)) {
+                }
+            } catch (const spline_error& e) {
+                throw rows_.unsettled(name_, first_.value_or(location{}), e);
+            }
+        }
+        const frame_rows& rows_;
+        std::string name_;
+        std::optional<location> first_;
+        segment_builder builder_{method::cubic, path::shortest, std::nullopt};
+    };
     /// How a track whose file states `own` is resampled.
     resample_options of(const std::optional<track_interpolation>& own) const {
         resample_options r = opts_;

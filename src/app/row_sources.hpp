@@ -5,7 +5,6 @@
 #include <iosfwd>
 #include <memory>
 #include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -75,10 +74,16 @@ public:
     virtual table_info table(const document_facts& d) const = 0;
     /// Checks the whole input before anything is written; warns of what it assumed.
     virtual void check(const document_facts& d, warnings& warn) const = 0;
-    /// Whether check_track is to see every track's keys before anything is written.
-    virtual bool checks_tracks() const { return false; }
-    /// Checks what only a whole track shows (a cubic spline that does not settle).
-    virtual void check_track(const std::string&, std::span<const key>) const {}
+    /// What only a whole track shows (a cubic spline that does not settle),
+    /// checked key by key before anything is written: none where there is
+    /// nothing to check. Its add() and finish() throw input_error.
+    class track_check {
+    public:
+        virtual ~track_check() = default;
+        virtual void add(const key& k) = 0;
+        virtual void finish() = 0;
+    };
+    virtual std::unique_ptr<track_check> check_track(const std::string&) const { return nullptr; }
     /// In one pass: checks key `k` of track `name`, whose first key is `first`, before its rows.
     virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
     /// How a glTF file is to interpolate the rows of a track whose file states `own`.

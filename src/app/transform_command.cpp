@@ -164,22 +164,29 @@ std::optional<document_facts> stream_rows(const transform_plan& p, const input_s
 }
 
 /// Every track's keys to the row source's check_track: an input read whole
-/// (`doc`), or streamed once more.
+/// (`doc`), or streamed once more (only where some track has a check).
 void check_tracks(const transform_plan& p, const input_source& src, const std::optional<document>& doc, warnings& warn) {
     if (doc) {
-        for (const track& t : doc->tracks) p.rows->check_track(t.name, t.keys);
+        for (const track& t : doc->tracks)
+            if (const auto check = p.rows->check_track(t.name)) {
+                for (const key& k : t.keys) check->add(k);
+                check->finish();
+            }
         return;
     }
+    if (!p.rows->check_track("")) return;
     const pass_keys keys = open_keys(p, src, warn);
     std::string name, track;
     raw_key raw;
-    std::vector<key> held;
+    std::unique_ptr<row_source::track_check> check;
     while (keys.reader->next(name, raw)) {
-        if (name != track && !held.empty()) p.rows->check_track(track, held), held.clear();
-        track = name;
-        held.push_back(make_key(raw, keys.reader->settings(), warn));
+        if (!check || name != track) {
+            if (check) check->finish();
+            check = p.rows->check_track(name), track = name;
+        }
+        check->add(make_key(raw, keys.reader->settings(), warn));
     }
-    if (!held.empty()) p.rows->check_track(track, held);
+    if (check) check->finish();
 }
 
 /// The tracks of an input read whole, whose facts are `d`.
@@ -252,7 +259,7 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
         d = facts_of(*whole);
     }
     p.rows->check(d, warn);
-    if (p.rows->checks_tracks()) check_tracks(p, src, whole, warn);
+    check_tracks(p, src, whole, warn);
     const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing_for(p, src, d, warn), warn);
     if (whole) whole_rows(p, *whole, d, *table);
     else if (!stream_rows(p, src, &d, *table, warn))  // pass 1 took it: the document is not what it was

@@ -180,6 +180,21 @@ row_difference comparer::matched(const std::string& name, const key& e, const ke
     };
     vector(e.translation, a.translation, r.translation, "translation");
     vector(e.scale, a.scale, r.scale, "scale");
+    const auto rate = [&](const std::optional<double>& tol, const std::optional<vec3>& e_value,
+                          const std::optional<vec3>& a_value, std::optional<double>& difference, std::string_view what,
+                          std::string_view unit) {
+        if (!tol || !e_value) return;
+        if (!a_value) {
+            if (r.problem.empty()) r.problem = fmt::format("{} missing from ACTUAL", what);
+            return;
+        }
+        difference = from_radians(norm(*e_value - *a_value), angle_unit::degrees);
+        if (*difference > *tol && r.problem.empty())
+            r.problem = fmt::format("{} differs by {:.6g} {} (tolerance {:g})", what, *difference, unit, *tol);
+    };
+    rate(tol_.velocity, e.rates.velocity, a.rates.velocity, r.velocity, "angular velocity", "deg/s");
+    rate(tol_.acceleration, e.rates.acceleration, a.rates.acceleration, r.acceleration, "angular acceleration",
+         "deg/s^2");
     if (!e.weights.empty() && r.problem.empty()) {
         if (a.weights.size() != e.weights.size())
             r.problem = fmt::format("{} morph weights in ACTUAL: expected {}", a.weights.size(), e.weights.size());

@@ -198,14 +198,21 @@ segment_builder::segment_builder(method m, path p, const std::optional<euler_seq
 
 void segment_builder::clear() noexcept {
     window_.clear();
-    cubic_.times.clear(), cubic_.keys.clear(), cubic_.rates = {}, cubic_.next = 0;
+    cubic_.times.clear(), cubic_.keys.clear(), cubic_.velocity.clear();
+    cubic_.first = cubic_.final = cubic_.next = 0;
 }
 
 quat segment_builder::add(const key& k) {
     quat q = k.rotation;
     if (how_ == method::cubic) {
-        if (!cubic_.keys.empty() && dot(cubic_.keys.back(), q) < 0) q = -q;
-        cubic_.times.push_back(k.time), cubic_.keys.push_back(q);
+        auto& c = cubic_;
+        if (!c.keys.empty() && dot(c.keys.back(), q) < 0) q = -q;
+        // A key's first guess is its incoming segment's mean rate; the
+        // first key's velocity is the first segment's, final at once.
+        vec3 guess;
+        if (!c.keys.empty()) guess = mean_rate(c.keys.back(), q, k.time - c.times.back());
+        if (c.first + c.keys.size() == 1) c.velocity[0] = guess, c.final = 1;
+        c.times.push_back(k.time), c.keys.push_back(q), c.velocity.push_back(guess);
         return q;
     }
     const bool flips = way_ == path::shortest && how_ != method::cubicspline;
@@ -224,21 +231,14 @@ quat segment_builder::add(const key& k) {
 
 bool segment_builder::pop(segment& out, bool end) {
     if (how_ == method::cubic) {
-        // every segment depends on every key: none until the last has come
         auto& c = cubic_;
-        if (!end || c.next + 1 >= c.keys.size()) return false;
-        if (c.rates.velocity.empty()) {
-            c.rates = spline_key_rates(c.times, c.keys);
-            if (!c.rates.converged)
-                throw spline_error(fmt::format("the cubic spline's equations do not settle in {} rounds (steps near 180 "
-                                               "degrees between keys of very uneven spacing): expected smaller steps, "
-                                               "or another method",
-                                               spline_max_rounds));
-        }
-        const std::size_t i = c.next++;
+        // a segment whose keys' velocities are final
+        while (c.next + 1 >= c.final)
+            if (!solve_stretch(end)) return false;
+        const std::size_t i = c.next++ - c.first;
         out.how_ = how_;
         out.t0 = c.times[i], out.t1 = c.times[i + 1], out.q0 = c.keys[i], out.q1 = c.keys[i + 1];
-        out.cubic_ = spline_segment(out.q0, out.q1, out.t1 - out.t0, c.rates.velocity[i], c.rates.velocity[i + 1]);
+        out.cubic_ = spline_segment(out.q0, out.q1, out.t1 - out.t0, c.velocity[i], c.velocity[i + 1]);
         return true;
     }
     // squad's segment [0, 1] needs key 1's control point, which needs key 2
@@ -252,6 +252,38 @@ bool segment_builder::pop(segment& out, bool end) {
     if (how_ == method::euler) out.e0_ = a.e, out.e1_ = b.e, out.seq_ = *seq_;
     if (how_ == method::cubicspline) out.spline0_ = a.spline, out.spline1_ = b.spline;
     window_.erase(window_.begin());
+    return true;
+}
+
+bool segment_builder::solve_stretch(bool end) {
+    auto& c = cubic_;
+    const std::size_t received = c.first + c.keys.size();
+    if (received < 2 || c.final == received) return false;
+    if (!end && received < c.final + cubic_stretch + cubic_margin) return false;
+    // From the last final key (exact, as the boundary of what follows) to
+    // the stretch's look-ahead, or to the track's last key, whose velocity
+    // (the last segment's mean rate) is final too.
+    const std::size_t from = c.final - 1, to = end ? received - 1 : from + cubic_stretch + cubic_margin;
+    if (to - from >= 2) {
+        const std::size_t a = from - c.first, n = to - from + 1;
+        const spline_status s = c.solver.solve(std::span(c.times).subspan(a, n), std::span(c.keys).subspan(a, n),
+                                               std::span(c.velocity).subspan(a, n));
+        if (!s.converged)
+            throw spline_error(fmt::format("the cubic spline's equations do not settle in {} rounds (steps near 180 "
+                                           "degrees between keys of very uneven spacing): expected smaller steps, "
+                                           "or another method",
+                                           spline_max_rounds));
+    }
+    c.final = end ? received : to - cubic_margin + 1;
+    // Forget the keys no segment or stretch needs again (now and then, so that it costs little).
+    const std::size_t keep = std::min(c.next, c.final - 1);
+    if (keep - c.first >= cubic_stretch) {
+        const auto drop = static_cast<std::ptrdiff_t>(keep - c.first);
+        c.times.erase(c.times.begin(), c.times.begin() + drop);
+        c.keys.erase(c.keys.begin(), c.keys.begin() + drop);
+        c.velocity.erase(c.velocity.begin(), c.velocity.begin() + drop);
+        c.first = keep;
+    }
     return true;
 }
 

@@ -21,9 +21,6 @@ vec3 rotation_vector(quat a, quat b) noexcept {
 /// solved for each right-hand side.
 class block_tridiagonal {
 public:
-    explicit block_tridiagonal(std::size_t rows) {
-        lower_.reserve(rows), pivot_.reserve(rows), eliminated_.reserve(rows);
-    }
     /// Row k: lower[k] x[k-1] + diagonal[k] x[k] + upper[k] x[k+1] = b[k].
     void add_row(const mat3& lower, const mat3& diagonal, const mat3& upper) {
         const std::size_t k = pivot_.size();
@@ -47,41 +44,51 @@ private:
     std::vector<mat3> lower_, pivot_, eliminated_;
 };
 
+/// What each round needs of an inner key's segments, worked out once a stretch.
+struct inner {
+    mat3 lower, upper;            // 2/dt_k J(phi_k), 2/dt_{k+1} Jinv(phi_{k+1})
+    mat3 jinv;                    // Jinv(phi_k)
+    curvature_coefficients bend;  // of phi_k
+    double diagonal;              // 4 (1/dt_k + 1/dt_{k+1})
+    vec3 fixed;                   // the right-hand side but the curvature
+};
+
 }  // namespace
 
-spline_rates spline_key_rates(std::span<const double> times, std::span<const quat> keys) {
+struct spline_solver::workspace {
+    std::vector<vec3> phi;
+    std::vector<double> dt;
+    std::vector<inner> each;
+    block_tridiagonal system;
+    std::vector<vec3> minus_residual, step;
+};
+
+spline_solver::spline_solver() = default;
+spline_solver::~spline_solver() = default;
+spline_solver::spline_solver(const spline_solver&) {}
+spline_solver& spline_solver::operator=(const spline_solver&) { return *this; }
+
+vec3 mean_rate(quat a, quat b, double seconds) noexcept { return (1 / seconds) * rotation_vector(a, b); }
+
+spline_status spline_solver::solve(std::span<const double> times, std::span<const quat> keys, std::span<vec3> w) {
+    if (!work_) work_ = std::make_unique<workspace>();
+    workspace& ws = *work_;
     const std::size_t n = keys.size();
-    std::vector<vec3> phi(n - 1);
-    std::vector<double> dt(n - 1);
+    auto& phi = ws.phi;
+    auto& dt = ws.dt;
+    phi.resize(n - 1), dt.resize(n - 1);
     for (std::size_t i = 0; i + 1 < n; ++i) {
         dt[i] = times[i + 1] - times[i];
         phi[i] = rotation_vector(keys[i], keys[i + 1]);
     }
-    spline_rates out;
-    std::vector<vec3>& w = out.velocity;
-    w.resize(n);
-    // The first and last keys move at their segments' mean rates; the inner
-    // ones start from their incoming segment's.
-    for (std::size_t i = 1; i < n; ++i) w[i] = (1 / dt[i - 1]) * phi[i - 1];
-    w[0] = (1 / dt[0]) * phi[0];
-    if (n == 2) return out;
-
     // Unknown k is key k + 1's velocity. The angular acceleration at the
     // end of segment k, J(phi_k) phi_k'' + curvature(phi_k, phi_k'), equals
     // phi_{k+1}''(0) at the start of the next; with phi cubic that is
     //   2/dt_k J(phi_k) w_k + 4 (1/dt_k + 1/dt_{k+1}) w_{k+1} + 2/dt_{k+1} Jinv(phi_{k+1}) w_{k+2}
     //     = 6 (phi_k / dt_k^2 + phi_{k+1} / dt_{k+1}^2) - curvature(phi_k, Jinv(phi_k) w_{k+1}).
     const std::size_t m = n - 2;
-    // What each round needs of the inner keys' segments, worked out once.
-    struct inner {
-        mat3 lower, upper;            // 2/dt_k J(phi_k), 2/dt_{k+1} Jinv(phi_{k+1})
-        mat3 jinv;                    // Jinv(phi_k)
-        curvature_coefficients bend;  // of phi_k
-        double diagonal;              // 4 (1/dt_k + 1/dt_{k+1})
-        vec3 fixed;                   // the right-hand side but the curvature
-    };
-    std::vector<inner> each;
-    each.reserve(m);
+    auto& each = ws.each;
+    each.clear();
     mat3 jinv_next = inverse_rate_matrix(phi[0]);
     for (std::size_t k = 0; k < m; ++k) {
         inner& e = each.emplace_back();
@@ -102,7 +109,7 @@ spline_rates spline_key_rates(std::span<const double> times, std::span<const qua
     // curvature's derivative too: Newton's method, refactored each round,
     // which settles in a few rounds where scipy's takes dozens.
     const mat3 none{};
-    block_tridiagonal system(m);
+    block_tridiagonal& system = ws.system;
     const auto factor = [&](bool newton) {
         system.clear();
         for (std::size_t k = 0; k < m; ++k) {
@@ -115,7 +122,10 @@ spline_rates spline_key_rates(std::span<const double> times, std::span<const qua
     factor(false);
     bool newton = false;
     double last_step = std::numeric_limits<double>::infinity();
-    std::vector<vec3> minus_residual(m), step;
+    auto& minus_residual = ws.minus_residual;
+    auto& step = ws.step;
+    minus_residual.resize(m);
+    spline_status out;
     out.converged = false;
     while (out.rounds < spline_max_rounds && !out.converged) {
         ++out.rounds;
@@ -142,6 +152,19 @@ spline_rates spline_key_rates(std::span<const double> times, std::span<const qua
         newton = newton || largest > 0.1 * last_step;
         last_step = largest;
     }
+    return out;
+}
+
+spline_rates spline_key_rates(std::span<const double> times, std::span<const quat> keys) {
+    const std::size_t n = keys.size();
+    spline_rates out;
+    std::vector<vec3>& w = out.velocity;
+    // The first and last keys move at their segments' mean rates; the inner
+    // ones start from their incoming segment's.
+    w.resize(n);
+    for (std::size_t i = 1; i < n; ++i) w[i] = mean_rate(keys[i - 1], keys[i], times[i] - times[i - 1]);
+    w[0] = w[1];
+    if (n > 2) out.status = spline_solver().solve(times, keys, w);
     return out;
 }
 

@@ -27,7 +27,7 @@ _keyrot() {
         resample) flags="--output-dir --jobs $input $output $interpolation --fps --max-frames --velocity --acceleration --velocity-frame" ;;
         convert) flags="--output-dir --jobs $input $output" ;;
         slerp) flags="-t --steps --max-frames --from-rep $interpolation $output" ;;
-        compare) flags="--tol --tol-translation --ignore-extra --report -o --output --fsync $input $conventions" ;;
+        compare) flags="--tol --tol-translation --tol-velocity --tol-acceleration --ignore-extra --report -o --output --fsync $input $conventions" ;;
         info) flags="-o --output --fsync --to --precision --segments $interpolation $input $conventions" ;;
         reduce) flags="--output-dir --jobs $input $output $interpolation --tol --tol-translation --report" ;;
         help) flags="" ;;
@@ -56,6 +56,7 @@ _keyrot() {
             COMPREPLY=($(compgen -d -- "$cur"))
             return ;;
         -t | --steps | --fps | --key-fps | --max-frames | --max-bytes | --jobs | --precision | --tol | --tol-translation | \
+            --tol-velocity | --tol-acceleration | \
             --animation)
             COMPREPLY=()  # a number, or an animation's name
             return ;;
