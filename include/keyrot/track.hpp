@@ -91,7 +91,8 @@ struct key {
     std::optional<quat> given_quat = std::nullopt;
     /// glTF CUBICSPLINE keys only (held apart: keys are copied often, and most have none).
     std::shared_ptr<const full_spline_key> spline;
-    frame_rates rates;  ///< as read, in radians (a frame of resample --velocity)
+    /// As read, in radians (a frame of resample --velocity); held apart as the spline.
+    std::shared_ptr<const frame_rates> rates;
 };
 
 struct track {

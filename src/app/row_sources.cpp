@@ -35,7 +35,7 @@ void own_methods(const track_interpolation& own, Options& r) {
 
 table_row key_row(const key& k) {
     return table_row{{k.time, k.frame, k.rotation, k.translation, k.scale, k.weights,  // (views k's)
-                      k.rates.any() ? &k.rates : nullptr},
+                      k.rates.get()},
                      k.has_time,
                      false,
                      {},

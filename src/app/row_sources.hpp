@@ -45,7 +45,7 @@ struct document_facts {
             tracks.push_back({track, k, k, {}, s.euler, s.key_fps, 0, s.interpolation});
         any_frame = any_frame || k.frame.has_value();
         counted = counted || (k.frame && !k.has_time);
-        velocity = velocity || k.rates.velocity, acceleration = acceleration || k.rates.acceleration;
+        if (k.rates) velocity = velocity || k.rates->velocity, acceleration = acceleration || k.rates->acceleration;
         ++tracks.back().keys;
         tracks.back().carried |= channels_of(k);
         tracks.back().last = std::move(k);

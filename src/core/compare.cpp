@@ -192,9 +192,10 @@ row_difference comparer::matched(const std::string& name, const key& e, const ke
         if (*difference > *tol && r.problem.empty())
             r.problem = fmt::format("{} differs by {:.6g} {} (tolerance {:g})", what, *difference, unit, *tol);
     };
-    rate(tol_.velocity, e.rates.velocity, a.rates.velocity, r.velocity, "angular velocity", "deg/s");
-    rate(tol_.acceleration, e.rates.acceleration, a.rates.acceleration, r.acceleration, "angular acceleration",
-         "deg/s^2");
+    static const frame_rates none;
+    const frame_rates &er = e.rates ? *e.rates : none, &ar = a.rates ? *a.rates : none;
+    rate(tol_.velocity, er.velocity, ar.velocity, r.velocity, "angular velocity", "deg/s");
+    rate(tol_.acceleration, er.acceleration, ar.acceleration, r.acceleration, "angular acceleration", "deg/s^2");
     if (!e.weights.empty() && r.problem.empty()) {
         if (a.weights.size() != e.weights.size())
             r.problem = fmt::format("{} morph weights in ACTUAL: expected {}", a.weights.size(), e.weights.size());

@@ -80,7 +80,9 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
         if (!v) return std::nullopt;
         return vec3{to_radians(v->x, s.angles), to_radians(v->y, s.angles), to_radians(v->z, s.angles)};
     };
-    out.rates = {radians(k.rates.velocity), radians(k.rates.acceleration)};
+    if (k.rates.any())
+        out.rates = std::make_shared<const frame_rates>(
+            frame_rates{radians(k.rates.velocity), radians(k.rates.acceleration)});
     if (k.spline) out.spline = std::make_shared<const full_spline_key>(*k.spline);
     // A row with both is a frame of keyrot's own output, at whatever rate it
     // was made: its time times it, its frame is kept as a label (compare
