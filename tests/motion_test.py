@@ -156,6 +156,23 @@ for track, keys in list(by_track.items())[:8]:
     keys = np.array(keys)
     against_scipy(f"capture.bvh joint {track}", keys[:, 0] / 120, R.from_quat(keys[:, [2, 3, 4, 1]]), 25)
 
+# glTF and BVH in and out: cubic's frames, LINEAR samplers of them (to float32), BVH's Euler frames
+with tempfile.TemporaryDirectory() as tmp:
+    for name, out in (("arm_wave.gltf", "out.glb"), ("capture.bvh", "out.bvh")):
+        path = os.path.join(tmp, out)
+        r = run("resample", os.path.join(DATA, name), "--method", "cubic", "--fps", "30", "-o", path)
+        check(r.returncode == 0, f"resample {name} --method cubic -o {out}: {r.stderr}")
+        direct = run("resample", os.path.join(DATA, name), "--method", "cubic", "--fps", "30", "--rep", "quat", "--to", "csv")
+        back = run("convert", path, "--rep", "quat", "--to", "csv")
+        quats = []
+        for text_ in (direct.stdout, back.stdout):
+            lines = [line.split(",") for line in text_.splitlines() if not line.startswith("#")]
+            at = [lines[0].index(c) for c in ("qx", "qy", "qz", "qw")]
+            quats.append(np.array([[float(row[i]) for i in at] for row in lines[1:]]))
+        qd, qb = quats
+        angle = np.degrees((R.from_quat(qd).inv() * R.from_quat(qb)).magnitude()).max() if len(qd) == len(qb) else 1e9
+        check(angle < 1e-3, f"{name} by cubic into {out} and back: {angle:.3g} deg from the CSV frames")
+
 # two keys: the constant-rate slerp
 t, q, w, dw = resample(csv_text([0, 2], [[1, 0, 0, 0], [np.cos(0.5), 0, 0, np.sin(0.5)]]), "--method", "cubic", "--fps", "4")
 check(np.allclose(w, [[0, 0, 0.5]] * len(t), atol=1e-15) and np.allclose(dw, 0, atol=1e-15),

@@ -150,6 +150,7 @@ private:
     struct {
         std::vector<double> times;  // the keys from `first` on (global indices)
         std::vector<quat> keys;
+        std::vector<vec3> phi;       // each key's to the next (rotation_vector_between)
         std::vector<vec3> velocity;  // final before `final`, first guesses after
         std::size_t first = 0, final = 0;
         std::size_t next = 0;  // the segment pop() gives next

@@ -36,10 +36,11 @@ public:
     ~spline_solver();
     spline_solver(const spline_solver&);
     spline_solver& operator=(const spline_solver&);
-    /// `velocity`: one per key, the first and last fixed, the others a
-    /// first guess, solved in place. Preconditions: at least three keys,
-    /// times strictly increasing, keys unit.
-    spline_status solve(std::span<const double> times, std::span<const quat> keys, std::span<vec3> velocity);
+    /// `phi`: each segment's rotation vector (rotation_vector_between its
+    /// keys); `velocity`: one per key, the first and last fixed, the others
+    /// a first guess, solved in place. Preconditions: at least three keys,
+    /// times strictly increasing.
+    spline_status solve(std::span<const double> times, std::span<const vec3> phi, std::span<vec3> velocity);
 
 private:
     struct workspace;
@@ -54,15 +55,16 @@ struct spline_rates {
 };
 spline_rates spline_key_rates(std::span<const double> times, std::span<const quat> keys);
 
-/// The mean rate (rotation vector per second) from key a to key b, `seconds` later, the short way.
-vec3 mean_rate(quat a, quat b, double seconds) noexcept;
+/// The rotation vector (radians) from unit a to unit b, the short way:
+/// b = a exp(phi) with |phi| at most pi.
+vec3 rotation_vector_between(quat a, quat b) noexcept;
 
-/// A segment of the spline: key q0 at t0 to key q1 = q0 exp(phi) at t0 + dt,
-/// with velocities w0 and w1 at its keys.
+/// A segment of the spline: key q0 at t0 to key q0 exp(phi) at t0 + dt
+/// (phi = rotation_vector_between the keys), with velocities w0 and w1 at its keys.
 class spline_segment {
 public:
     spline_segment() = default;
-    spline_segment(quat q0, quat q1, double dt, vec3 w0, vec3 w1) noexcept;
+    spline_segment(quat q0, vec3 phi, double dt, vec3 w0, vec3 w1) noexcept;
     /// The rotation at local parameter h in [0, 1]: q0 exp(phi(h dt)).
     quat at(double h) const noexcept;
     /// phi, phi' and phi'' (per second) at local parameter h.

@@ -198,7 +198,7 @@ segment_builder::segment_builder(method m, path p, const std::optional<euler_seq
 
 void segment_builder::clear() noexcept {
     window_.clear();
-    cubic_.times.clear(), cubic_.keys.clear(), cubic_.velocity.clear();
+    cubic_.times.clear(), cubic_.keys.clear(), cubic_.phi.clear(), cubic_.velocity.clear();
     cubic_.first = cubic_.final = cubic_.next = 0;
 }
 
@@ -210,7 +210,10 @@ quat segment_builder::add(const key& k) {
         // A key's first guess is its incoming segment's mean rate; the
         // first key's velocity is the first segment's, final at once.
         vec3 guess;
-        if (!c.keys.empty()) guess = mean_rate(c.keys.back(), q, k.time - c.times.back());
+        if (!c.keys.empty()) {
+            c.phi.push_back(rotation_vector_between(c.keys.back(), q));
+            guess = (1 / (k.time - c.times.back())) * c.phi.back();
+        }
         if (c.first + c.keys.size() == 1) c.velocity[0] = guess, c.final = 1;
         c.times.push_back(k.time), c.keys.push_back(q), c.velocity.push_back(guess);
         return q;
@@ -238,7 +241,7 @@ bool segment_builder::pop(segment& out, bool end) {
         const std::size_t i = c.next++ - c.first;
         out.how_ = how_;
         out.t0 = c.times[i], out.t1 = c.times[i + 1], out.q0 = c.keys[i], out.q1 = c.keys[i + 1];
-        out.cubic_ = spline_segment(out.q0, out.q1, out.t1 - out.t0, c.velocity[i], c.velocity[i + 1]);
+        out.cubic_ = spline_segment(out.q0, c.phi[i], out.t1 - out.t0, c.velocity[i], c.velocity[i + 1]);
         return true;
     }
     // squad's segment [0, 1] needs key 1's control point, which needs key 2
@@ -266,7 +269,7 @@ bool segment_builder::solve_stretch(bool end) {
     const std::size_t from = c.final - 1, to = end ? received - 1 : from + cubic_stretch + cubic_margin;
     if (to - from >= 2) {
         const std::size_t a = from - c.first, n = to - from + 1;
-        const spline_status s = c.solver.solve(std::span(c.times).subspan(a, n), std::span(c.keys).subspan(a, n),
+        const spline_status s = c.solver.solve(std::span(c.times).subspan(a, n), std::span(c.phi).subspan(a, n - 1),
                                                std::span(c.velocity).subspan(a, n));
         if (!s.converged)
             throw spline_error(fmt::format("the cubic spline's equations do not settle in {} rounds (steps near 180 "
@@ -281,6 +284,7 @@ bool segment_builder::solve_stretch(bool end) {
         const auto drop = static_cast<std::ptrdiff_t>(keep - c.first);
         c.times.erase(c.times.begin(), c.times.begin() + drop);
         c.keys.erase(c.keys.begin(), c.keys.begin() + drop);
+        c.phi.erase(c.phi.begin(), c.phi.begin() + drop);
         c.velocity.erase(c.velocity.begin(), c.velocity.begin() + drop);
         c.first = keep;
     }

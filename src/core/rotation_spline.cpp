@@ -7,14 +7,14 @@
 #include "keyrot/motion.hpp"
 
 namespace keyrot {
-namespace {
 
-/// The rotation vector (radians) from a to b, the short way.
-vec3 rotation_vector(quat a, quat b) noexcept {
+vec3 rotation_vector_between(quat a, quat b) noexcept {
     quat r = conjugate(a) * b;
     if (r.w < 0) r = -r;
     return 2.0 * log(r);
 }
+
+namespace {
 
 /// The block tridiagonal system of the inner keys' velocities, factored
 /// once (block Thomas: lower blocks, inverted pivots, eliminated uppers),
@@ -56,7 +56,6 @@ struct inner {
 }  // namespace
 
 struct spline_solver::workspace {
-    std::vector<vec3> phi;
     std::vector<double> dt;
     std::vector<inner> each;
     block_tridiagonal system;
@@ -68,19 +67,13 @@ spline_solver::~spline_solver() = default;
 spline_solver::spline_solver(const spline_solver&) {}
 spline_solver& spline_solver::operator=(const spline_solver&) { return *this; }
 
-vec3 mean_rate(quat a, quat b, double seconds) noexcept { return (1 / seconds) * rotation_vector(a, b); }
-
-spline_status spline_solver::solve(std::span<const double> times, std::span<const quat> keys, std::span<vec3> w) {
+spline_status spline_solver::solve(std::span<const double> times, std::span<const vec3> phi, std::span<vec3> w) {
     if (!work_) work_ = std::make_unique<workspace>();
     workspace& ws = *work_;
-    const std::size_t n = keys.size();
-    auto& phi = ws.phi;
+    const std::size_t n = times.size();
     auto& dt = ws.dt;
-    phi.resize(n - 1), dt.resize(n - 1);
-    for (std::size_t i = 0; i + 1 < n; ++i) {
-        dt[i] = times[i + 1] - times[i];
-        phi[i] = rotation_vector(keys[i], keys[i + 1]);
-    }
+    dt.resize(n - 1);
+    for (std::size_t i = 0; i + 1 < n; ++i) dt[i] = times[i + 1] - times[i];
     // Unknown k is key k + 1's velocity. The angular acceleration at the
     // end of segment k, J(phi_k) phi_k'' + curvature(phi_k, phi_k'), equals
     // phi_{k+1}''(0) at the start of the next; with phi cubic that is
@@ -105,9 +98,11 @@ spline_status spline_solver::solve(std::span<const double> times, std::span<cons
     }
     // Each round solves J step = -residual. With J the linear part alone
     // (factored once) that is scipy's iteration, cheap and enough where the
-    // steps are small; where it converges slowly (large steps), J takes the
-    // curvature's derivative too: Newton's method, refactored each round,
-    // which settles in a few rounds where scipy's takes dozens.
+    // steps are small. Where a round does not shrink the step tenfold
+    // (large steps), J takes the curvature's derivative at the current
+    // velocities too (Newton's method), kept while it shrinks the step
+    // tenfold a round and factored again where it does not: a few rounds
+    // where scipy's takes dozens.
     const mat3 none{};
     block_tridiagonal& system = ws.system;
     const auto factor = [&](bool newton) {
@@ -120,7 +115,7 @@ spline_status spline_solver::solve(std::span<const double> times, std::span<cons
         }
     };
     factor(false);
-    bool newton = false;
+    bool refactor = false;
     double last_step = std::numeric_limits<double>::infinity();
     auto& minus_residual = ws.minus_residual;
     auto& step = ws.step;
@@ -129,7 +124,7 @@ spline_status spline_solver::solve(std::span<const double> times, std::span<cons
     out.converged = false;
     while (out.rounds < spline_max_rounds && !out.converged) {
         ++out.rounds;
-        if (newton) factor(true);
+        if (refactor) factor(true);
         for (std::size_t k = 0; k < m; ++k) {
             const inner& e = each[k];
             const vec3 x = w[k + 1];
@@ -148,8 +143,7 @@ spline_status spline_solver::solve(std::span<const double> times, std::span<cons
             largest = std::fmax(largest, norm(step[k]));
             w[k + 1] = a;
         }
-        // (scipy's iteration shrinks the step tenfold a round at least, or gives way)
-        newton = newton || largest > 0.1 * last_step;
+        refactor = largest > 0.1 * last_step;
         last_step = largest;
     }
     return out;
@@ -161,17 +155,20 @@ spline_rates spline_key_rates(std::span<const double> times, std::span<const qua
     std::vector<vec3>& w = out.velocity;
     // The first and last keys move at their segments' mean rates; the inner
     // ones start from their incoming segment's.
+    std::vector<vec3> phi(n - 1);
     w.resize(n);
-    for (std::size_t i = 1; i < n; ++i) w[i] = mean_rate(keys[i - 1], keys[i], times[i] - times[i - 1]);
+    for (std::size_t i = 1; i < n; ++i) {
+        phi[i - 1] = rotation_vector_between(keys[i - 1], keys[i]);
+        w[i] = (1 / (times[i] - times[i - 1])) * phi[i - 1];
+    }
     w[0] = w[1];
-    if (n > 2) out.status = spline_solver().solve(times, keys, w);
+    if (n > 2) out.status = spline_solver().solve(times, phi, w);
     return out;
 }
 
-spline_segment::spline_segment(quat q0, quat q1, double dt, vec3 w0, vec3 w1) noexcept : q0_(q0), dt_(dt) {
+spline_segment::spline_segment(quat q0, vec3 phi, double dt, vec3 w0, vec3 w1) noexcept : q0_(q0), dt_(dt) {
     // phi(0) = 0, phi'(0) = w0 (J(0) is the identity), phi(dt) = the
     // segment's rotation vector, phi'(dt) = Jinv(phi) w1.
-    const vec3 phi = rotation_vector(q0, q1);
     const vec3 end_rate = inverse_rate_matrix(phi) * w1;
     c1_ = w0;
     c2_ = (1 / (dt * dt)) * (3 * phi - (2 * dt) * w0 - dt * end_rate);

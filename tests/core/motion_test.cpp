@@ -177,7 +177,8 @@ TEST_CASE("cubic solved a stretch at a time is the spline solved whole, to round
         segment s;
         const auto compare = [&] {
             const segment_curve c = s.curve();
-            const spline_segment ref(keys[i], keys[i + 1], times[i + 1] - times[i], whole.velocity[i], whole.velocity[i + 1]);
+            const spline_segment ref(keys[i], rotation_vector_between(keys[i], keys[i + 1]), times[i + 1] - times[i],
+                                     whole.velocity[i], whole.velocity[i + 1]);
             for (double h : {0.3, 0.7}) worst = std::fmax(worst, geodesic_angle(c.at(h), ref.at(h)));
             ++i;
         };
