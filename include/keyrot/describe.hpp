@@ -53,9 +53,10 @@ struct speed_info {
 /// A segment whose largest speed is above both of these is a spike (a
 /// flip, swapped joints or a marker drop in a captured take): so many times
 /// the median of the largest speeds of the spike_window segments around it
-/// (the segment in the middle; fewer at a track's ends), and this many deg/s.
+/// (the segment in the middle; fewer at a track's ends; taken afresh every
+/// spike_median_every segments, as it changes slowly), and this many deg/s.
 inline constexpr double spike_times_median = 10, spike_floor_deg_s = 360;
-inline constexpr std::size_t spike_window = 65;
+inline constexpr std::size_t spike_window = 65, spike_median_every = 16;
 
 struct track_info {
     std::string name;
@@ -103,12 +104,20 @@ public:
     const track_info& info() const noexcept { return info_; }
 
 private:
-    void measure(const segment& s);
-    void judge_until(std::size_t end);  // spikes? the segments not yet judged before `end`, against window_'s median
+    void measure(const segment& s);            // a segment of a curve whose speed changes
+    void settle(const peak& fastest, double angle);  // a segment's fastest point and the angle it turns
+    // spikes? the segments not yet judged before `end`, against window_'s median (afresh if `last`)
+    void judge_until(std::size_t end, bool last);
     segment_builder builder_;
+    bool steady_;  // slerp or step: one speed a segment, from the keys alone
+    path way_;
+    segment_info last_segment_;
+    std::optional<double> previous_frame_;
     std::deque<peak> window_;  // the latest segments' fastest points, up to spike_window
     std::size_t dropped_ = 0;  // segments gone from the front of window_
     std::size_t judged_ = 0;   // segments judged (each once, in order)
+    double median_ = 0;        // of window_, taken since_median_ segments ago
+    std::size_t since_median_ = spike_median_every;
     double speed_time_ = 0;    // the integral of the speed over the segments measured, deg
     std::deque<std::optional<double>> frames_;  // the frame numbers of the keys no segment has begun at yet
     std::optional<euler_seq> euler_;

@@ -20,53 +20,61 @@ double gimbal_distance(quat q, const euler_seq& seq) {
 
 track_describer::track_describer(std::string name, std::optional<euler_seq> euler, bool segments, method how,
                                  path way)
-    : builder_(how, way, euler), euler_(std::move(euler)), keep_segments_(segments) {
+    : builder_(how, way, euler), steady_(how == method::slerp || how == method::step), way_(way),
+      euler_(std::move(euler)), keep_segments_(segments) {
     info_.name = std::move(name);
     const peak none{-1, 0, 0, std::nullopt, std::nullopt};  // (below any speed)
     info_.speed = speed_info{how, none, none, 0, {}, 0};
 }
 
 void track_describer::measure(const segment& s) {
-    const segment_curve curve = s.curve();
     speed_info& v = *info_.speed;
     const std::size_t from = dropped_ + window_.size();
     const std::optional<double> frame = frames_[0], frame_to = frames_[1];
     frames_.pop_front();
     peak fastest{-1, 0, from, frame, frame_to};
+    const double dt = s.t1 - s.t0;
+    const segment_curve curve = s.curve();
     double sum = 0;  // Simpson's rule over the five points
     const double weights[] = {1, 4, 2, 4, 1};
     for (std::size_t j = 0; j < 5; ++j) {
-        const double h = static_cast<double>(j) / 4;
+        const double h = static_cast<double>(j) / 4, time = s.t0 + h * dt;
         const motion m = curve.rates(h);
-        const double time = s.t0 + h * (s.t1 - s.t0);
         const double speed = from_radians(norm(m.velocity), angle_unit::degrees);
         const double acceleration = from_radians(norm(m.acceleration), angle_unit::degrees);
-        sum += weights[j] * speed;
         if (speed > fastest.value) fastest.value = speed, fastest.time = time;
         if (acceleration > v.most_accelerated.value) v.most_accelerated = {acceleration, time, from, frame, frame_to};
+        sum += weights[j] * speed;
     }
-    speed_time_ += sum / 12 * (s.t1 - s.t0);
+    settle(fastest, sum / 12 * dt);
+}
+
+void track_describer::settle(const peak& fastest, double angle) {
+    speed_info& v = *info_.speed;
+    speed_time_ += angle;
     if (fastest.value > v.fastest.value) v.fastest = fastest;
     window_.push_back(fastest);
     // A full window judges the segment in its middle (the first one, those before it too).
     if (window_.size() == spike_window) {
-        judge_until(dropped_ + spike_window / 2 + 1);
+        judge_until(dropped_ + spike_window / 2 + 1, false);
         window_.pop_front();
         ++dropped_;
     }
 }
 
-void track_describer::judge_until(std::size_t end) {
+void track_describer::judge_until(std::size_t end, bool last) {
     if (judged_ >= end) return;
-    std::array<double, spike_window> speeds{};
-    for (std::size_t i = 0; i < window_.size(); ++i) speeds[i] = window_[i].value;
-    const auto last = speeds.begin() + static_cast<std::ptrdiff_t>(window_.size());
-    const auto median = speeds.begin() + static_cast<std::ptrdiff_t>(window_.size() / 2);
-    std::nth_element(speeds.begin(), median, last);
+    if (last || ++since_median_ >= spike_median_every) {
+        std::array<double, spike_window> speeds{};
+        for (std::size_t i = 0; i < window_.size(); ++i) speeds[i] = window_[i].value;
+        const auto middle = speeds.begin() + static_cast<std::ptrdiff_t>(window_.size() / 2);
+        std::nth_element(speeds.begin(), middle, speeds.begin() + static_cast<std::ptrdiff_t>(window_.size()));
+        median_ = *middle, since_median_ = 0;
+    }
     speed_info& v = *info_.speed;
     for (; judged_ < end; ++judged_) {
         const peak& p = window_[judged_ - dropped_];
-        if (p.value > spike_times_median * *median && p.value > spike_floor_deg_s && v.spike_count++ < key_list::listed)
+        if (p.value > spike_times_median * median_ && p.value > spike_floor_deg_s && v.spike_count++ < key_list::listed)
             v.spikes.push_back(p);
     }
 }
@@ -79,7 +87,7 @@ void track_describer::finish() {
         return;
     }
     // The segments after the last window's middle (a short track's all) against it.
-    judge_until(dropped_ + window_.size());
+    judge_until(dropped_ + window_.size(), true);
     info_.speed->mean = speed_time_ / (info_.end - info_.start);
 }
 
@@ -109,18 +117,36 @@ void track_describer::add(const key& k) {
         info.shortest_gap = std::min(info.shortest_gap, gap);
         info.longest_gap = std::max(info.longest_gap, gap);
         if (keep_segments_) info.segments.push_back(s);
+        last_segment_ = s;
         if (dot(aligned_, aligned) < 0) {
             aligned = -aligned;
             info.flipped.add(i);
         }
     }
     aligned_ = aligned;
+    if (steady_) {
+        // One rate through each segment, slerp's its angle (the long way
+        // where --path direct takes it) over its time: no curve needed, as
+        // a track of dense keys has thousands of segments.
+        if (i > 0) {
+            const segment_info& s = keep_segments_ ? info.segments.back() : last_segment_;
+            const double angle = info_.speed->how == method::step ? 0
+                                 : way_ == path::direct && s.direct_long_way ? 360 - s.angle_deg
+                                                                            : s.angle_deg;
+            const double speed = angle / (k.time - previous_time_);
+            const std::size_t from = dropped_ + window_.size();
+            if (from == 0) info_.speed->most_accelerated = {0, previous_time_, 0, previous_frame_, k.frame};
+            settle({speed, previous_time_, from, previous_frame_, k.frame}, angle);
+        }
+    } else {
+        builder_.add(k);
+        frames_.push_back(k.frame);
+        segment s;
+        while (builder_.pop(s, false)) measure(s);
+    }
     previous_ = k.rotation;
     previous_time_ = k.time;
-    builder_.add(k);
-    frames_.push_back(k.frame);
-    segment s;
-    while (builder_.pop(s, false)) measure(s);
+    previous_frame_ = k.frame;
 }
 
 track_info describe(const track& t) {
