@@ -88,13 +88,14 @@ struct track_info {
 inline constexpr double near_gimbal_deg = 1;
 
 /// A track described as its keys arrive, in time order, in constant memory
-/// unless every segment is kept (--segments), or the method is cubic (40
-/// bytes a key, as resample).
+/// unless every segment is kept (--segments); cubic holds a stretch of keys,
+/// as resample does.
 class track_describer {
 public:
     /// `euler`: the track's sequence; `segments`: keep every segment; the
-    /// speeds are those of the curve `how` and `way` play (the angular
-    /// speed's largest of five points in each segment, which slerp's is at all of them).
+    /// speeds are those of the curve `how` and `way` play: the largest of
+    /// five points of each segment, but slerp's and step's, one speed a
+    /// segment, from its keys alone.
     /// Throws option_error for method::euler without a sequence.
     track_describer(std::string name, std::optional<euler_seq> euler, bool segments, method how = method::slerp,
                     path way = path::shortest);

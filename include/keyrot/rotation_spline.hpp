@@ -1,6 +1,6 @@
 #pragma once
 // The rotation spline with continuous angular velocity and acceleration
-// (--method cubic): the curve of scipy's RotationSpline, after N. Mayorov,
+// (method::cubic): the curve of scipy's RotationSpline, after N. Mayorov,
 // "Smooth attitude interpolation" (2019).
 #include <cstddef>
 #include <memory>
