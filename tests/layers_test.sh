@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The layers of docs/design.md hold in the code: each folder includes only
 # what stands below it, the threads of io/fast are included by io/open.cpp
-# alone, a format folder includes no other format but the JSON parser, and
-# no source file is over 500 lines.
+# alone, a format folder includes no other format but the JSON parser, the
+# picture writer (io/svg) knows no rotation, and no source file is over 500
+# lines.
 # Usage: layers_test.sh SOURCE_DIR
 set -uo pipefail
 cd "$1" || exit 2
@@ -46,6 +47,9 @@ for f in csv json gltf bvh; do
     none "io/$f includes no other format and nothing above it" \
         "$(includes "io/($others)/|io/(open|document)\\.|io/fast/" "src/io/$f")"
 done
+
+none "io/svg draws figures: it includes no format and nothing above it" \
+    "$(includes 'io/(csv|json|gltf|bvh|fast)/|io/(open|document)\.|keyrot/' src/io/svg)"
 
 long=$(find src include -name '*.cpp' -o -name '*.hpp' | xargs wc -l | awk '$2 != "total" && $1 > 500')
 none "no source file over 500 lines" "$long"

@@ -220,7 +220,7 @@ expect "compare -o" 0 "22 rows compared, 0 failed" -- bash -c "'$keyrot' compare
 # ---- messages in the user's words
 expect_error "ANSWER missing" "keyrot: compare: ANSWER is missing: expected the key, then one answer or more (see keyrot compare --help)" -- \
     "$keyrot" compare key.csv
-expect_error "unknown command" "keyrot: unknown command 'interp': expected resample, convert, slerp, compare, info or reduce (did you mean 'slerp'?)" -- \
+expect_error "unknown command" "keyrot: unknown command 'interp': expected resample, convert, slerp, compare, info, reduce or plot (did you mean 'slerp'?)" -- \
     "$keyrot" interp x
 expect_error "slerp -t nan" "keyrot: -t: expected a finite number, got nan" -- "$keyrot" slerp 1,0,0,0 0,0,0,1 -t nan
 expect_error "JSON named .csv" "keyrot: out.csv:1: expected a CSV header, got what looks like JSON ('{'): --from json or --from ndjson reads it as such" -- \

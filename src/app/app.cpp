@@ -14,6 +14,7 @@ int run_command(const options& o, std::istream& in, std::ostream& out, std::ostr
         case command::slerp: return detail::run_slerp(o, out, err);
         case command::compare: return detail::run_compare(o, in, out, err);
         case command::info: return detail::run_info(o, in, out, err);
+        case command::plot: return detail::run_plot(o, in, out, err);
     }
     return 2;
 }

@@ -16,7 +16,11 @@
 
 namespace keyrot {
 
-enum class command { resample, convert, slerp, compare, info, reduce };
+enum class command { resample, convert, slerp, compare, info, reduce, plot };
+
+/// What plot draws of a rotation: its quaternion's components, its Euler
+/// angles, or its angle from the track's first key.
+enum class plot_curves { quat, euler, angle };
 
 struct options {
     command cmd = command::resample;
@@ -64,6 +68,12 @@ struct options {
 
     // info
     bool segments = false;  ///< --segments: every segment's angle and speed, not only the largest
+
+    // plot, and compare's and reduce's pictures
+    std::optional<std::string> plot;          ///< compare, reduce --plot FILE
+    std::optional<plot_curves> curves;        ///< plot --rep (default: Euler angles where a sequence is known)
+    std::vector<std::string> track_patterns;  ///< plot --track, shell patterns
+    bool speed = false;                       ///< plot --speed
 };
 
 /// Runs one command. Data goes to `out` (unless -o / --output-dir), warnings

@@ -12,5 +12,6 @@ int run_transform(const options& o, std::istream& in, std::ostream& out, std::os
 int run_slerp(const options& o, std::ostream& out, std::ostream& err);
 int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostream& err);
 int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream& err);
+int run_plot(const options& o, std::istream& in, std::ostream& out, std::ostream& err);
 
 }  // namespace keyrot::detail

@@ -16,6 +16,7 @@
 #include "app/commands.hpp"
 #include "app/compare_files.hpp"
 #include "app/plan.hpp"
+#include "app/plots.hpp"
 #include "ground/thread_start.hpp"
 #include "io/common/interface.hpp"
 #include "io/common/layout.hpp"
@@ -268,9 +269,9 @@ private:
 
 /// One answer against the key: both surveyed at once (the answer on a
 /// thread of its own, its warnings said after the key's), then its rows as
-/// they are settled, then the summary.
+/// they are settled (and drawn, with `picture`), then the summary.
 int compare_one(const options& o, const input_source& key_src, const input_source& src, std::ostream& out,
-                std::ostream& err) {
+                std::ostream& err, picture_file* picture) {
     std::ostringstream held;
     warnings key_warn(err, key_src.source()), answer_warn(err, src.source()), answer_held(held, src.source());
     answer_survey answer;
@@ -288,10 +289,18 @@ int compare_one(const options& o, const input_source& key_src, const input_sourc
     answer_warn.adopt(answer_held, held.str());
 
     one_answer_report report(o, key_src.source(), src.source(), out, err);
+    difference_plot drawn(o.tol_deg);
     const grade g = grade_answer(
         o, key_src, *key, src, answer, [&](const comparison_summary& c) { report.begin(c); },
-        [&](const row_difference& r) { report.row(r); });
-    if (g.result) return report.finish(g, out);
+        [&](const row_difference& r) {
+            report.row(r);
+            if (picture) drawn.row(r);
+        });
+    if (g.result) {
+        const int status = report.finish(g, out);
+        if (picture) picture->write({drawn.panels("")});
+        return status;
+    }
     print_error(err, g.error);
     if (o.report == format::json) emit(o, json_object().text("error", g.error).flag("pass", false).object() + '\n', out);
     return 2;
@@ -392,19 +401,26 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
         throw usage_error("compare: ANSWER is missing: expected the key, then one answer or more (see keyrot compare --help)");
     if (std::count_if(o.inputs.begin(), o.inputs.end(), [](const auto& f) { return is_standard_stream(f); }) > 1)
         throw usage_error("compare: only one of KEY and the answers can be '-'");
+    std::optional<picture_file> picture;
+    if (o.plot) picture.emplace(*o.plot, o.fsync, out);
     const input_source key_src(o.inputs[0], in);
     if (o.inputs.size() == 2) {
         const input_source src(o.inputs[1], in);
-        return compare_one(o, key_src, src, out, err);
+        return compare_one(o, key_src, src, out, err, picture ? &*picture : nullptr);
     }
     warnings warn_key(err, key_src.source());
     const surveyed_file key = survey_file(o, key_src, warn_key);
     // A grade table: a row per answer; the hints and the count on stderr.
     std::vector<grade> grades;
+    svg::figure drawn;  // with --plot, each answer's panels in turn
     for (std::size_t i = 1; i < o.inputs.size(); ++i) {
         const input_source src(o.inputs[i], in);
         warnings warn(err, src.source());
-        grades.push_back(grade_answer(o, key_src, key, src, survey_answer(o, src, warn)));
+        difference_plot rows(o.tol_deg);
+        grades.push_back(grade_answer(o, key_src, key, src, survey_answer(o, src, warn), nullptr,
+                                      picture ? [&](const row_difference& r) { rows.row(r); } : comparer::row_sink()));
+        if (grades.back().result)
+            for (svg::panel& p : rows.panels(printable(src.source()) + ": ")) drawn.panels.push_back(std::move(p));
     }
     const tolerances tol{o.tol_deg, o.tol_translation, o.tol_velocity, o.tol_acceleration};
     if (o.report == format::json) emit(o, grade_table_json(key.source, grades, tol), out);
@@ -418,6 +434,7 @@ int run_compare(const options& o, std::istream& in, std::ostream& out, std::ostr
     }
     err << fmt::format("{} answers graded against {}: {} pass, {} fail, {} unreadable\n", grades.size(),
                        printable(key.source), passed, grades.size() - passed - unreadable, unreadable);
+    if (picture) picture->write(drawn);
     return passed == grades.size() ? 0 : 1;
 }
 

@@ -230,8 +230,10 @@ class reduced_rows final : public key_rows {
 public:
     /// `method_given`: --method overrides the interpolation a file states.
     /// `gltf`: the output is a glTF file, which plays rotations LINEAR (slerp) or STEP only.
-    reduced_rows(const reduce_options& r, bool method_given, bool report_json, std::string source, bool gltf)
-        : opts_(r), method_given_(method_given), report_json_(report_json), source_(std::move(source)), gltf_(gltf) {}
+    reduced_rows(const reduce_options& r, bool method_given, bool report_json, std::string source, bool gltf,
+                 reduction_observer* watch)
+        : opts_(r), method_given_(method_given), report_json_(report_json), source_(std::move(source)), gltf_(gltf),
+          watch_(watch) {}
     void check(const document_facts& d, warnings& warn) const override {
         key_rows::check(d, warn);
         for (const auto& t : d.tracks) {
@@ -259,19 +261,28 @@ public:
                      const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
         key_rows::begin_track(name, euler, own, carried, std::move(row));
         name_ = name;
+        if (watch_) watch_->begin_track(name, euler, of(own));
         // A kept key goes out as it came in: a quaternion as given, not normalised.
         reducer_.emplace(of(own), euler, source_, [this](const key& k) {
+            if (watch_) watch_->keep(k);
             table_row kept = key_row(k);
             kept.rotation = k.given_quat.value_or(k.rotation);
             row_(kept);
         });
     }
-    void add(const key& k) override { reducer_->add(k); }
+    void add(const key& k) override {
+        if (watch_) watch_->add(k);
+        reducer_->add(k);
+    }
     void end_track() override {
         reducer_->finish();
         summaries_.emplace_back(name_, reducer_->summary());
+        if (watch_) watch_->end_track();
     }
-    void restart() override { summaries_.clear(); }
+    void restart() override {
+        summaries_.clear();
+        if (watch_) watch_->restart();
+    }
     /// A line per track on `err`; with --report json, a JSON report on `out` instead.
     void report(std::ostream& out, std::ostream& err) const override {
         if (report_json_) return write_to_stream(out, json_report());
@@ -319,6 +330,7 @@ private:
     bool method_given_, report_json_;
     std::string source_;
     bool gltf_;
+    reduction_observer* watch_;
     std::string name_;
     std::optional<track_reducer> reducer_;
     std::vector<std::pair<std::string, reduce_summary>> summaries_;
@@ -333,8 +345,8 @@ std::unique_ptr<row_source> make_frame_rows(const resample_options& r, bool meth
 std::unique_ptr<row_source> make_key_rows() { return std::make_unique<key_rows>(); }
 
 std::unique_ptr<row_source> make_reduced_rows(const reduce_options& r, bool method_given, bool report_json,
-                                              std::string source, bool gltf) {
-    return std::make_unique<reduced_rows>(r, method_given, report_json, std::move(source), gltf);
+                                              std::string source, bool gltf, reduction_observer* watch) {
+    return std::make_unique<reduced_rows>(r, method_given, report_json, std::move(source), gltf, watch);
 }
 
 }  // namespace keyrot::detail

@@ -106,10 +106,25 @@ std::unique_ptr<row_source> make_frame_rows(const resample_options& r, bool meth
 /// convert: each key as it is, with its own frame or time.
 std::unique_ptr<row_source> make_key_rows();
 
+/// What reduce --plot sees of each track: its keys, and the ones kept.
+class reduction_observer {
+public:
+    virtual ~reduction_observer() = default;
+    /// Track `name` begins, reduced as `r` says.
+    virtual void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
+                             const reduce_options& r) = 0;
+    virtual void add(const key& k) = 0;
+    virtual void keep(const key& k) = 0;
+    virtual void end_track() = 0;
+    /// What was seen does not count: the input is read again.
+    virtual void restart() = 0;
+};
+
 /// reduce: the fewest of each track's keys that replay within tolerance,
 /// as convert writes keys. `report_json`: --report json; `gltf`: the output
-/// is a glTF file, which plays rotations LINEAR (slerp) or STEP only.
+/// is a glTF file, which plays rotations LINEAR (slerp) or STEP only;
+/// `watch`: told of every key and every kept one (reduce --plot), or none.
 std::unique_ptr<row_source> make_reduced_rows(const reduce_options& r, bool method_given, bool report_json,
-                                              std::string source, bool gltf);
+                                              std::string source, bool gltf, reduction_observer* watch = nullptr);
 
 }  // namespace keyrot::detail

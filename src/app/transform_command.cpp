@@ -20,6 +20,7 @@
 #include "app/commands.hpp"
 #include "app/output_names.hpp"
 #include "app/plan.hpp"
+#include "app/plots.hpp"
 #include "app/row_sources.hpp"
 #include "ground/held_warnings.hpp"
 #include "ground/thread_start.hpp"
@@ -268,9 +269,10 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
     p.rows->report(out, err);
 }
 
-/// What the options make of input `name`: how it is read, its row source,
-/// the formats, where its output goes.
-transform_plan plan_for(const options& o, const std::string& name, const input_source& src, durable_batch* batch) {
+/// What the options make of input `name`: how it is read, its row source
+/// (reduce's told to `watch`, where there is one), the formats, where its output goes.
+transform_plan plan_for(const options& o, const std::string& name, const input_source& src, durable_batch* batch,
+                        reduction_observer* watch) {
     transform_plan p{o, reading(o, src.source()), nullptr, src.detect(o.from), format::csv, std::nullopt, batch, nullptr};
     p.out = o.to.value_or(p.in);
     if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
@@ -286,7 +288,7 @@ transform_plan plan_for(const options& o, const std::string& name, const input_s
             throw usage_error("reduce: BVH has a line for every frame, so it cannot drop keys: expected --to csv, "
                               "json, ndjson, gltf or glb, or -o with one of their extensions");
         p.rows = make_reduced_rows(reducing(o), o.how.has_value(), o.report == format::json, src.source(),
-                                                is_gltf(p.out));
+                                   is_gltf(p.out), watch);
     } else {
         p.rows = make_key_rows();
     }
@@ -294,14 +296,15 @@ transform_plan plan_for(const options& o, const std::string& name, const input_s
 }
 
 /// resample, convert or reduce one input; errors and warnings to `err`.
-/// With `batch`, its output file is put in place by the batch. Returns the status.
+/// With `batch`, its output file is put in place by the batch; with
+/// `watch`, reduce tells it what it keeps. Returns the status.
 int transform_one(const options& o, const std::string& name, std::istream& in, std::ostream& out, std::ostream& err,
-                  durable_batch* batch = nullptr) {
+                  durable_batch* batch, reduction_observer* watch) {
     try {
         if (is_standard_stream(name) && o.output_dir)
             throw usage_error("standard input ('-') cannot be used with --output-dir");
         const input_source src(name, in);
-        transform(plan_for(o, name, src, batch), src, out, err);
+        transform(plan_for(o, name, src, batch, watch), src, out, err);
         return 0;
     } catch (const option_error&) {  // the whole run's
         throw;
@@ -320,7 +323,7 @@ int transform_one(const options& o, const std::string& name, std::istream& in, s
 /// together at the end (durable_batch): the disk is waited for once, not
 /// once a file.
 int transform_batch(const options& o, const std::vector<std::string>& inputs, std::istream& in, std::ostream& out,
-                    std::ostream& err) {
+                    std::ostream& err, std::vector<reduction_plot>& drawn) {
     std::vector<std::string> messages(inputs.size()), reports(inputs.size());  // reduce --report json
     std::vector<int> statuses(inputs.size(), 0);
     std::exception_ptr stop;  // a bad flag (or no memory left) stops everything, as for one file
@@ -332,7 +335,8 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
         for (std::size_t i; (i = next++) < inputs.size();) {
             try {
                 std::ostringstream messages_of_file, report_of_file;  // (the outputs go to files)
-                statuses[i] = transform_one(o, inputs[i], in, report_of_file, messages_of_file, batch ? &*batch : nullptr);
+                statuses[i] = transform_one(o, inputs[i], in, report_of_file, messages_of_file, batch ? &*batch : nullptr,
+                                            drawn.empty() ? nullptr : &drawn[i]);
                 messages[i] = messages_of_file.str();
                 reports[i] = report_of_file.str();
                 const std::size_t finished = ++done;
@@ -389,8 +393,25 @@ int run_transform(const options& o, std::istream& in, std::ostream& out, std::os
         std::filesystem::create_directories(*o.output_dir, ec);
         if (ec) throw error(fmt::format("cannot create directory '{}': {}", *o.output_dir, ec.message()));
     }
-    if (inputs.size() == 1) return transform_one(o, inputs.front(), in, out, err);
-    return transform_batch(o, inputs, in, out, err);
+    // reduce --plot: the picture's file opened first (a target that cannot be
+    // written is said at once), each input's tracks drawn as it is reduced,
+    // and the picture written when every input is.
+    std::optional<picture_file> picture;
+    std::vector<reduction_plot> drawn;
+    if (o.plot) {
+        picture.emplace(*o.plot, o.fsync, out);
+        drawn.reserve(inputs.size());
+        for (const std::string& name : inputs) drawn.emplace_back(o, printable(source_name(name)), inputs.size() > 1);
+    }
+    const int status = inputs.size() == 1
+                           ? transform_one(o, inputs.front(), in, out, err, nullptr, drawn.empty() ? nullptr : &drawn[0])
+                           : transform_batch(o, inputs, in, out, err, drawn);
+    if (picture && status == 0) {
+        svg::figure f;
+        for (const reduction_plot& d : drawn) f.panels.insert(f.panels.end(), d.panels().begin(), d.panels().end());
+        picture->write(f);
+    }
+    return status;
 }
 
 }  // namespace keyrot::detail

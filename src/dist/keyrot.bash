@@ -10,11 +10,11 @@ _keyrot() {
     elif [[ $prev == = ]] && ((COMP_CWORD >= 2)); then
         prev=${COMP_WORDS[COMP_CWORD - 2]}
     fi
-    local commands="resample convert slerp compare info reduce help"
+    local commands="resample convert slerp compare info reduce plot help"
     local command="" i
     for ((i = 1; i < COMP_CWORD; i++)); do
         case ${COMP_WORDS[i]} in
-            resample | convert | slerp | compare | info | reduce | help) command=${COMP_WORDS[i]}; break ;;
+            resample | convert | slerp | compare | info | reduce | plot | help) command=${COMP_WORDS[i]}; break ;;
         esac
     done
 
@@ -27,9 +27,10 @@ _keyrot() {
         resample) flags="--output-dir --jobs $input $output $interpolation --fps --max-frames --velocity --acceleration --velocity-frame" ;;
         convert) flags="--output-dir --jobs $input $output" ;;
         slerp) flags="-t --steps --max-frames --from-rep $interpolation $output" ;;
-        compare) flags="--tol --tol-translation --tol-velocity --tol-acceleration --ignore-extra --report -o --output --fsync $input $conventions" ;;
+        compare) flags="--tol --tol-translation --tol-velocity --tol-acceleration --ignore-extra --report -o --output --plot --fsync $input $conventions" ;;
         info) flags="-o --output --fsync --to --precision --segments $interpolation $input $conventions" ;;
-        reduce) flags="--output-dir --jobs $input $output $interpolation --tol --tol-translation --report" ;;
+        reduce) flags="--output-dir --jobs $input $output $interpolation --tol --tol-translation --report --plot" ;;
+        plot) flags="-o --output --fsync --rep --out-euler --track --speed $interpolation $input $conventions" ;;
         help) flags="" ;;
         *) flags="--version" ;;
     esac
@@ -40,7 +41,7 @@ _keyrot() {
     case $prev in
         --from) values="csv json ndjson gltf glb bvh" ;;
         --to) [[ $command == info ]] && values="json" || values="csv json ndjson gltf glb bvh" ;;
-        --rep) values="axis-angle quat rotvec euler matrix matrix4" ;;
+        --rep) [[ $command == plot ]] && values="quat euler angle" || values="axis-angle quat rotvec euler matrix matrix4" ;;
         --from-rep) values="quat axis-angle rotvec euler" ;;
         --method) values="slerp nlerp squad step euler cubic" ;;
         --velocity-frame) values="body world" ;;
@@ -49,7 +50,7 @@ _keyrot() {
         --report) [[ $command == compare ]] && values="csv json" || values="json" ;;
         --settings-line) values="needed always never" ;;
         --euler | --out-euler) values=$euler ;;
-        -o | --output)
+        -o | --output | --plot)
             COMPREPLY=($(compgen -f -- "$cur"))
             return ;;
         --output-dir)
@@ -57,8 +58,8 @@ _keyrot() {
             return ;;
         -t | --steps | --fps | --key-fps | --max-frames | --max-bytes | --jobs | --precision | --tol | --tol-translation | \
             --tol-velocity | --tol-acceleration | \
-            --animation)
-            COMPREPLY=()  # a number, or an animation's name
+            --animation | --track)
+            COMPREPLY=()  # a number, or a name
             return ;;
     esac
     if [[ -n ${values-} && $prev == -* ]]; then
@@ -71,7 +72,7 @@ _keyrot() {
     elif [[ -z $command ]]; then
         COMPREPLY=($(compgen -W "$commands" -- "$cur"))
     elif [[ $command == help ]]; then
-        ((COMP_CWORD == i + 1)) && COMPREPLY=($(compgen -W "formats resample convert slerp compare info reduce" -- "$cur"))
+        ((COMP_CWORD == i + 1)) && COMPREPLY=($(compgen -W "formats resample convert slerp compare info reduce plot" -- "$cur"))
     elif [[ $command != slerp ]]; then
         COMPREPLY=($(compgen -f -- "$cur"))  # slerp's operands are numbers
     fi

@@ -23,6 +23,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                                         command::reduce};
     o.cmd = commands[pick & 3u];
     o.how = static_cast<method>((pick >> 2) % 5);
+    if (o.cmd == command::info && (pick & 0x04u)) {  // half of info's picks draw instead, to standard output
+        o.cmd = command::plot;
+        o.output = "-";
+        o.speed = pick & 0x80u;
+    }
     o.way = (pick & 0x20u) ? path::direct : path::shortest;
     o.representation = static_cast<rep>((pick >> 6) % 6 == 3 && !(pick & 1u) ? 0 : (pick >> 6) % 6);
     o.euler = parse_euler_seq((pick & 0x10u) ? "zxz" : "YXZ");
@@ -42,10 +47,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fuzz::require(::ftruncate(input, 0) == 0 && ::pwrite(input, data + 1, size - 1, 0) == rest &&
                   ::lseek(input, 0, SEEK_SET) == 0);
     std::ostringstream out, err;
+    int status = 2;
     try {
-        run(o, std::cin, out, err);
+        status = run(o, std::cin, out, err);
     } catch (const usage_error&) {
     }
     fuzz::check_output(err.str());
+    // A picture is a whole SVG document, or nothing.
+    if (o.cmd == command::plot)
+        fuzz::require(status == 0 ? out.str().starts_with("<?xml") && out.str().ends_with("</svg>\n") : out.str().empty());
     return 0;
 }
