@@ -38,8 +38,8 @@ void say_unmarked(svg::panel& p, std::size_t count, const std::string& label) {
     p.x_label += fmt::format("; {} {}, too close to mark", count, label);
 }
 
-/// Marks point `p` of curve `i` of panel `p` in the curve's colour, in a
-/// set of marks a curve (the first set named `label`).
+/// Marks `at`, a point of curve `i` of panel `p`, in the curve's colour:
+/// a set of marks a curve, the first named `label`.
 void mark(svg::panel& p, std::size_t i, svg::point at, const std::string& label) {
     while (p.marked.size() <= i) {
         const svg::curve& c = p.curves[p.marked.size()];
@@ -104,17 +104,13 @@ track_drawing::track_drawing(const std::string& title, const track_span& span,
                              const std::optional<euler_seq>& euler, const rotation_drawing& drawing, method how,
                              path way, bool speed)
     : span_(span), drawing_(drawing), speed_(speed), marking_(span.keys <= most_marked), builder_(how, way, euler),
+      rotation_(rotation_panel(title, rotation_values(drawing, quat{}))),
       speeds_{title + ": angular speed", "time (s)", fmt::format("speed ({}/s)", unit_name(drawing.unit)),
-              {{"speed", svg::colour::orange, {}}}, {}, {}, true, true} {
-    rotation_.title = title;
-}
+              {{"speed", svg::colour::orange, {}}}, {}, {}, true, true},
+      thinners_(rotation_.curves.size() + 1, svg::curve_thinner(span.first, span.last)) {}
 
 void track_drawing::add(const key& k) {
-    if (!values_) {
-        values_.emplace(drawing_, k.rotation);
-        rotation_ = rotation_panel(rotation_.title, *values_);
-        for (std::size_t i = 0; i < rotation_.curves.size() + 1; ++i) thinners_.emplace_back(span_.first, span_.last);
-    }
+    if (!values_) values_.emplace(drawing_, k.rotation);  // the angle is from the first key
     last_key_ = k.rotation;
     builder_.add(k);
     draw(false);
