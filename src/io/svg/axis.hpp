@@ -1,6 +1,7 @@
 #pragma once
 // An axis's round numbers: ticks at 1, 2 or 5 times a power of ten.
 #include <algorithm>
+#include <string>
 #include <vector>
 
 namespace keyrot::svg {
@@ -18,7 +19,14 @@ struct range {
 struct axis {
     double lo = 0, hi = 1;      ///< round numbers around the range
     std::vector<double> ticks;  ///< from lo to hi, evenly spaced
-    int decimals = 0;           ///< the digits after the point that tell the ticks apart
+    /// Each tick's label: the value less `offset`, with the digits that
+    /// tell the ticks apart ("0.25"), or as a multiple of the step's power
+    /// of ten where that is beyond 10^6 or 10^-6 ("25e-9", "30e-9").
+    std::vector<std::string> labels;
+    /// Taken from every label where the ticks are far from zero for their
+    /// spacing (times from 1e15 s, a step of 20 s): the first tick in the
+    /// range; else 0.
+    double offset = 0;
 };
 
 /// An axis over `r` with about `count` intervals (at least one): a range

@@ -160,32 +160,40 @@ void draw_legend(std::string& out, const panel& p, double y) {
             legend_entry(out, x, y, l.label, fmt::format("<path d=\"M{} {}h16\" {}/>\n", px(x), px(y), level_style));
 }
 
-void draw_axes(std::string& out, const panel& p, const frame& f, const std::vector<double>& xt,
-               const std::vector<double>& yt, int x_decimals, int y_decimals) {
+/// An axis's name, with what its labels are less of ("time (s) − 1000000000000000").
+std::string axis_name(const std::string& name, const axis& a) {
+    if (a.offset == 0) return escaped(name);
+    std::string offset;
+    append_number(offset, a.offset, std::nullopt);
+    return escaped(name) + " \u2212 " + offset;
+}
+
+/// The axes, their grid and labels; of the x axis's ticks, those inside the plot.
+void draw_axes(std::string& out, const panel& p, const frame& f, const axis& x_axis, const axis& y_axis) {
     std::string grid, labels;
-    for (double v : yt) {
-        grid += fmt::format("M{} {}H{}", px(f.left), px(f.y(v)), px(f.right));
-        std::string n;
-        append_number(n, v, y_decimals);
-        labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", px(f.left - 6),
-                              px(f.y(v) + 4), n);
+    for (std::size_t i = 0; i < y_axis.ticks.size(); ++i) {
+        const double y = f.y(y_axis.ticks[i]);
+        grid += fmt::format("M{} {}H{}", px(f.left), px(y), px(f.right));
+        labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", px(f.left - 6), px(y + 4),
+                              y_axis.labels[i]);
     }
-    for (double v : xt) {
+    const double slack = 1e-9 * (f.x1 - f.x0);
+    for (std::size_t i = 0; i < x_axis.ticks.size(); ++i) {
+        const double v = x_axis.ticks[i];
+        if (v < f.x0 - slack || v > f.x1 + slack) continue;
         grid += fmt::format("M{} {}V{}", px(f.x(v)), px(f.top), px(f.bottom));
-        std::string n;
-        append_number(n, v, x_decimals);
         labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", px(f.x(v)),
-                              px(f.bottom + 16), n);
+                              px(f.bottom + 16), x_axis.labels[i]);
     }
     out += fmt::format("<path class=\"grid\" d=\"{}\" stroke=\"#E3E3E3\" stroke-width=\"1\"/>\n", grid);
     out += fmt::format("<path class=\"axis\" d=\"M{} {}V{}H{}\" fill=\"none\" stroke=\"#404040\" stroke-width=\"1\"/>\n",
                        px(f.left), px(f.top), px(f.bottom), px(f.right));
     out += labels;
     out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", px((f.left + f.right) / 2),
-                       px(f.bottom + 36), escaped(p.x_label));
+                       px(f.bottom + 36), axis_name(p.x_label, x_axis));
     const double mid = (f.top + f.bottom) / 2;
     out += fmt::format("<text x=\"{0}\" y=\"{1}\" text-anchor=\"middle\" transform=\"rotate(-90 {0} {1})\">{2}</text>\n",
-                       px(16), px(mid), escaped(p.y_label));
+                       px(16), px(mid), axis_name(p.y_label, y_axis));
 }
 
 /// Draws panel `p` from `top`, a group of its own; returns where the next one begins.
@@ -205,12 +213,7 @@ double draw_panel(std::string& out, const panel& p, double top) {
     const axis y_axis = axis_of(ys, p.short_plot ? 3 : 5);
     f.y0 = y_axis.lo, f.y1 = y_axis.hi;
     std::tie(f.x0, f.x1) = xs.empty() ? std::pair(0.0, 1.0) : shown_range(xs.lo, xs.hi);
-    const axis x_axis = axis_of(range{f.x0, f.x1}, 8);
-    const double slack = 1e-9 * (f.x1 - f.x0);
-    std::vector<double> xt;
-    for (double v : x_axis.ticks)
-        if (v >= f.x0 - slack && v <= f.x1 + slack) xt.push_back(v);
-    draw_axes(out, p, f, xt, y_axis.ticks, x_axis.decimals, y_axis.decimals);
+    draw_axes(out, p, f, axis_of(range{f.x0, f.x1}, 8), y_axis);
     for (const level& l : p.levels)
         out += fmt::format("<path d=\"M{} {}H{}\" {}/>\n", px(f.left), px(f.y(l.y)), px(f.right), level_style);
     for (const curve& c : p.curves) {

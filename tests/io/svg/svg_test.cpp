@@ -40,21 +40,31 @@ TEST_CASE("axis ticks are 1, 2 or 5 times a power of ten, and cover the range") 
     CHECK(degrees.lo == 0);
     CHECK(degrees.hi == 100);
     CHECK(degrees.ticks == std::vector<double>{0, 20, 40, 60, 80, 100});
-    CHECK(degrees.decimals == 0);
+    CHECK(degrees.labels == std::vector<std::string>{"0", "20", "40", "60", "80", "100"});
+    CHECK(degrees.offset == 0);
 
     const axis unit = over(0, 1, 5);  // 0.2 a step
     REQUIRE(unit.ticks.size() == 6);
     CHECK(unit.ticks[3] == doctest::Approx(0.6));
-    CHECK(unit.decimals == 1);
+    CHECK(unit.labels == std::vector<std::string>{"0", "0.2", "0.4", "0.6", "0.8", "1"});
 
     const axis across_zero = over(-0.3, 0.7, 5);
     CHECK(across_zero.lo <= -0.3);
     CHECK(across_zero.hi >= 0.7);
     CHECK(std::count(across_zero.ticks.begin(), across_zero.ticks.end(), 0.0) == 1);  // a zero, not 5.5e-17
 
-    const axis tiny = over(1e-7, 3e-7, 4);  // differences of a rotation's rounding
-    CHECK(tiny.decimals == 8);
-    CHECK(tiny.ticks.size() >= 2);
+    const axis tiny = over(1e-7, 3e-7, 4);  // differences of a rotation's rounding: a step of 5e-8
+    CHECK(tiny.labels == std::vector<std::string>{"10e-8", "15e-8", "20e-8", "25e-8", "30e-8"});
+    const axis far = over(1e15, 1e15 + 100, 5);  // times from 1e15 s: labels from the first tick
+    CHECK(far.offset == 1e15);
+    CHECK(far.labels == std::vector<std::string>{"0", "20", "40", "60", "80", "100"});
+    const axis noise = over(180, 180 + 1e-15, 5);  // a constant angle's rounding: flat, its ticks integers
+    CHECK(noise.lo < 180);
+    CHECK(noise.hi > 180);
+    CHECK(noise.ticks.size() <= 7);
+    const axis huge = over(-1e300, 1e300, 4);
+    CHECK(huge.labels.front() == "-10e299");
+    CHECK(huge.labels.back() == "10e299");
 
     // One value, or none: an interval of one unit around it.
     const axis one = over(5, 5, 5);
