@@ -102,7 +102,7 @@ void draw_file(const options& o, const input_source& src, bool several, svg::fig
                 for (svg::panel& p : drawings[i]->finish()) figure.panels.push_back(std::move(p));
         }
     } catch (const spline_error& e) {
-        throw error(fmt::format("{}: track '{}': {}", src.source(), now, e.what()));
+        throw error(fmt::format("{}: {}{}", src.source(), now.empty() ? "" : fmt::format("track '{}': ", now), e.what()));
     }
 }
 
