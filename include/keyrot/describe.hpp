@@ -116,6 +116,7 @@ private:
     std::optional<double> previous_frame_;
     std::deque<peak> window_;  // the latest segments' fastest points, up to spike_window
     std::size_t dropped_ = 0;  // segments gone from the front of window_
+    std::size_t segments_seen() const noexcept { return dropped_ + window_.size(); }  // the next one's index
     std::size_t judged_ = 0;   // segments judged (each once, in order)
     double median_ = 0;        // of window_, taken since_median_ segments ago
     std::size_t since_median_ = spike_median_every;

@@ -130,9 +130,10 @@ public:
     }
     /// A cubic spline is solved as its keys come: to standard output, once before the first row.
     std::unique_ptr<track_check> check_track(const std::string& name) const override {
-        if (!method_given_ || opts_.how != method::cubic) return nullptr;
+        if (!checks_tracks()) return nullptr;
         return std::make_unique<spline_check>(*this, name);
     }
+    bool checks_tracks() const override { return method_given_ && opts_.how == method::cubic; }
 
 private:
     input_error unsettled(const std::string& track, const location& first, const spline_error& e) const {

@@ -84,6 +84,8 @@ public:
         virtual void finish() = 0;
     };
     virtual std::unique_ptr<track_check> check_track(const std::string&) const { return nullptr; }
+    /// Whether check_track gives every track a check (else none).
+    virtual bool checks_tracks() const { return false; }
     /// In one pass: checks key `k` of track `name`, whose first key is `first`, before its rows.
     virtual void check_key(const key& first, const key& k, const std::string& name, const std::string& source) const = 0;
     /// How a glTF file is to interpolate the rows of a track whose file states `own`.

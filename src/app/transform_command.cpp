@@ -175,7 +175,7 @@ void check_tracks(const transform_plan& p, const input_source& src, const std::o
             }
         return;
     }
-    if (!p.rows->check_track("")) return;
+    if (!p.rows->checks_tracks()) return;
     const pass_keys keys = open_keys(p, src, warn);
     std::string name, track;
     raw_key raw;

@@ -29,7 +29,7 @@ track_describer::track_describer(std::string name, std::optional<euler_seq> eule
 
 void track_describer::measure(const segment& s) {
     speed_info& v = *info_.speed;
-    const std::size_t from = dropped_ + window_.size();
+    const std::size_t from = segments_seen();
     const std::optional<double> frame = frames_[0], frame_to = frames_[1];
     frames_.pop_front();
     peak fastest{-1, 0, from, frame, frame_to};
@@ -87,7 +87,7 @@ void track_describer::finish() {
         return;
     }
     // The segments after the last window's middle (a short track's all) against it.
-    judge_until(dropped_ + window_.size(), true);
+    judge_until(segments_seen(), true);
     info_.speed->mean = speed_time_ / (info_.end - info_.start);
 }
 
@@ -134,7 +134,7 @@ void track_describer::add(const key& k) {
                                  : way_ == path::direct && s.direct_long_way ? 360 - s.angle_deg
                                                                             : s.angle_deg;
             const double speed = angle / (k.time - previous_time_);
-            const std::size_t from = dropped_ + window_.size();
+            const std::size_t from = segments_seen();
             if (from == 0) info_.speed->most_accelerated = {0, previous_time_, 0, previous_frame_, k.frame};
             settle({speed, previous_time_, from, previous_frame_, k.frame}, angle);
         }
