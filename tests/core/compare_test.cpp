@@ -13,13 +13,7 @@ using namespace keyrot;
 
 namespace {
 
-key at(double time, quat q, std::optional<double> frame = std::nullopt) {
-    key k;
-    k.time = time;
-    k.frame = frame;
-    k.rotation = q;
-    return k;
-}
+key at(double time, quat q, std::optional<double> frame = std::nullopt) { return test::key_at(time, q, frame); }
 
 track named(std::string name, std::vector<key> keys) { return track{std::move(name), std::nullopt, std::move(keys), std::nullopt}; }
 

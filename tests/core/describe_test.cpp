@@ -5,6 +5,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "helpers.hpp"
+
 using namespace keyrot;
 
 TEST_CASE("segments, flips, renormalised and near-gimbal keys") {
@@ -12,10 +14,7 @@ TEST_CASE("segments, flips, renormalised and near-gimbal keys") {
     track t;
     t.euler = parse_euler_seq("ZYX");
     auto add = [&t](double time, quat q) {
-        key k;
-        k.time = time;
-        k.rotation = q;
-        t.keys.push_back(k);
+        t.keys.push_back(test::key_at(time, q));
         return &t.keys.back();
     };
     add(0, quat{});

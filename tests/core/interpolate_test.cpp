@@ -34,12 +34,7 @@ quat slerp_power(quat r, quat q, double alpha) {
     return p * r;
 }
 
-key make_key(double time, quat q) {
-    key k;
-    k.time = time;
-    k.rotation = q;
-    return k;
-}
+key make_key(double time, quat q) { return test::key_at(time, q); }
 
 track make_track_of(const std::vector<quat>& qs, double spacing = 1) {
     track t;

@@ -28,12 +28,7 @@ double distance(vec3 a, vec3 b) { return norm(a - b); }
 /// exp of the pure quaternion phi/2: the rotation of rotation vector phi.
 quat turn(vec3 phi) { return exp(0.5 * phi); }
 
-key at(double time, quat q) {
-    key k;
-    k.time = time;
-    k.rotation = q;
-    return k;
-}
+key at(double time, quat q) { return test::key_at(time, q); }
 
 }  // namespace
 

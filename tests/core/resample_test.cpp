@@ -21,12 +21,7 @@ std::vector<sample> run(const track& t, resample_options opts = {}) {
 
 track keys_at(std::initializer_list<std::pair<double, quat>> list) {
     track t;
-    for (const auto& [time, q] : list) {
-        key k;
-        k.time = time;
-        k.rotation = q;
-        t.keys.push_back(k);
-    }
+    for (const auto& [time, q] : list) t.keys.push_back(test::key_at(time, q));
     return t;
 }
 

@@ -7,14 +7,25 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
 
 #include "keyrot/quat.hpp"
+#include "keyrot/track.hpp"
 
 namespace keyrot::test {
+
+/// A key at `time` of rotation `q` (and frame number `frame`, if any), as a reader would make it.
+inline key key_at(double time, quat q, std::optional<double> frame = std::nullopt) {
+    key k;
+    k.time = time;
+    k.frame = frame;
+    k.rotation = q;
+    return k;
+}
 
 /// A fresh directory under the system's temporary directory, removed after.
 struct scratch {
