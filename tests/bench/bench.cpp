@@ -9,9 +9,13 @@
 // --baseline, another keyrot binary (say, before a change) runs the same
 // commands in the same turns, and the ratio of the two is printed. Last,
 // `compare` and `info` of 200,000 and 1,000,000 resampled rows, each against
-// `resample` of the same rows.
+// `resample` of the same rows. First of all, the floor: the 1M-frame job
+// against keyrot_floor (the same input parsed by keyrot's reader and as
+// many numbers printed, with no math, on two threads: with std::to_chars,
+// and with keyrot's number writer) and the scipy script, taking turns, and
+// a summary line of the ratios.
 //
-// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR]
+// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor]
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <fcntl.h>
@@ -150,7 +154,8 @@ std::string cpu_model() {
 
 int main(int argc, char** argv) {
     int runs = 5;
-    std::string keyrot = KEYROT_BINARY, baseline, python, dir = (std::filesystem::temp_directory_path() / "keyrot-bench").string();
+    std::string keyrot = KEYROT_BINARY, baseline, python, only,
+                dir = (std::filesystem::temp_directory_path() / "keyrot-bench").string();
     for (int i = 1; i + 1 < argc; i += 2) {
         const std::string flag = argv[i];
         if (flag == "--runs") runs = std::max(1, std::atoi(argv[i + 1]));
@@ -158,6 +163,7 @@ int main(int argc, char** argv) {
         else if (flag == "--baseline") baseline = argv[i + 1];
         else if (flag == "--python") python = argv[i + 1];
         else if (flag == "--dir") dir = argv[i + 1];
+        else if (flag == "--only") only = argv[i + 1];
     }
     std::filesystem::create_directories(dir);
     python = find_python(python);
@@ -184,6 +190,26 @@ int main(int argc, char** argv) {
         print_row("baseline (same turns)", base, frames);
         fmt::print("{:<34} {:>10.3f}\n", "  ratio (keyrot / baseline)", m.median_s / base.median_s);
     };
+    {
+        // The floor: keyrot against parsing and printing alone.
+        const std::string track = dir + "/floor_track.csv";
+        const std::size_t frames = write_track(track, 200000);
+        const std::string rows = std::to_string(frames), columns = "6";  // frame,time,ax,ay,az,angle
+        std::vector<command> commands = {
+            {{keyrot, "resample", track, "-o", dir + "/out.csv", "--rep", "axis-angle"}},
+            {{KEYROT_FLOOR, track, dir + "/floor_out.csv", rows, columns, "to_chars"}},
+            {{KEYROT_FLOOR, track, dir + "/floor_keyrot_out.csv", rows, columns, "keyrot"}}};
+        if (!python.empty()) commands.push_back({{python, script, track, dir + "/out_scipy.csv"}});
+        const auto r = repeat(commands, runs);
+        print_row("keyrot, 1M frames", r[0], frames);
+        print_row("floor, std::to_chars (same turns)", r[1], frames);
+        print_row("floor, keyrot's writer", r[2], frames);
+        if (!python.empty()) print_row("scipy script", r[3], frames);
+        fmt::print("floor summary: keyrot / to_chars floor {:.2f}, keyrot / keyrot-writer floor {:.2f}{}\n",
+                   r[0].median_s / r[1].median_s, r[0].median_s / r[2].median_s,
+                   python.empty() ? "" : fmt::format(", scipy / keyrot {:.1f}", r[3].median_s / r[0].median_s));
+    }
+    if (only == "floor") return 0;
     const input inputs[] = {{200000}, {200000, digits::numpy}, {800000}, {1000000, digits::shortest, 25}};
     for (const input& in : inputs) {
         const bool numpy = in.style == digits::numpy, dense = in.density > 1;
