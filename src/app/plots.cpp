@@ -29,6 +29,9 @@ svg::panel rotation_panel(const std::string& title, const rotation_values& value
     return p;
 }
 
+/// The tolerance as a panel's dashed line.
+svg::level tolerance_level(double deg) { return {fmt::format("tolerance {} deg", deg), deg}; }
+
 /// The most keys a panel marks: more would hide the curves (which then
 /// pass through keys a few pixels apart anyway).
 constexpr std::size_t most_marked = 200;
@@ -175,7 +178,7 @@ std::vector<svg::panel> difference_plot::panels(const std::string& prefix) const
         svg::panel p{prefix + (name.empty() ? "rotation difference" : name), "time (s)", "difference (deg)", {},
                      {}, {}, true, false};
         p.curves.push_back({"difference", svg::colour::blue, t.differences});
-        p.levels.push_back({fmt::format("tolerance {} deg", tol_deg_), tol_deg_});
+        p.levels.push_back(tolerance_level(tol_deg_));
         if (!t.failing.empty()) p.marked.push_back({"failing rows", svg::colour::vermillion, svg::mark_shape::cross, t.failing});
         if (!t.unmatched.empty()) {
             // A row in one file only has no difference: marked along the top of what is drawn.
@@ -231,7 +234,7 @@ void reduction_plot::end_track() {
     svg::panel original = rotation_panel(title, values);
     svg::panel error{title + ": error of the kept keys' replay", "time (s)", "error (deg)",
                      {{"error", svg::colour::blue, {}}}, {},
-                     {{fmt::format("tolerance {} deg", how_.tol_deg), how_.tol_deg}}, true, true};
+                     {tolerance_level(how_.tol_deg)}, true, true};
     // Each curve thinned to its panel's columns as it is made.
     std::vector<svg::curve_thinner> thinners(original.curves.size() + 1,
                                              svg::curve_thinner(keys_.front().time, keys_.back().time));

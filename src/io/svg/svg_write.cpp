@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <set>
 #include <tuple>
@@ -44,8 +43,8 @@ const hex_pair& of(colour c) { return palette[static_cast<std::size_t>(c)]; }
 std::string style() {
     std::string light, dark;
     for (std::size_t i = 0; i < palette.size(); ++i) {
-        light += fmt::format(".c{0}{{stroke:{1}}}.f{0}{{fill:{1}}}", i, palette[i].light);
-        dark += fmt::format(".c{0}{{stroke:{1}}}.f{0}{{fill:{1}}}", i, palette[i].dark);
+        light += fmt::format(".c{}{{stroke:{}}}", i, palette[i].light);
+        dark += fmt::format(".c{}{{stroke:{}}}", i, palette[i].dark);
     }
     return fmt::format(
         "<style type=\"text/css\"><![CDATA[\n"
@@ -81,7 +80,7 @@ std::string px(double v) {
 
 /// The x and y ranges a panel's plot shows, and its place on the page.
 struct frame {
-    double left = plot_left, right = plot_right, top = 0, bottom = 0;
+    double top = 0, bottom = 0;  // (across, it spans plot_left to plot_right)
     double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
     double x(double v) const { return page_x(v, x0, x1); }
     double y(double v) const { return bottom - (v - y0) / (y1 - y0) * (bottom - top); }
@@ -133,7 +132,10 @@ std::string curve_style(colour hue) {
                        static_cast<std::size_t>(hue), of(hue).light);
 }
 
-constexpr const char* level_style = "class=\"c6\" stroke=\"#767676\" stroke-width=\"1.25\" stroke-dasharray=\"6 4\"";
+std::string level_style() {
+    return fmt::format("class=\"c{}\" stroke=\"{}\" stroke-width=\"1.25\" stroke-dasharray=\"6 4\"",
+                       static_cast<std::size_t>(colour::grey), of(colour::grey).light);
+}
 
 /// How many things a panel's legend names (those with a label).
 std::size_t named(const panel& p) {
@@ -157,7 +159,7 @@ void draw_legend(std::string& out, const panel& p, double y) {
                      fmt::format("<path d=\"{}\" fill=\"none\" {}/>\n", mark_at(m.shape, x + 8, y), mark_style(m)));
     for (const level& l : p.levels)
         if (!l.label.empty())
-            legend_entry(out, x, y, l.label, fmt::format("<path d=\"M{} {}h16\" {}/>\n", px(x), px(y), level_style));
+            legend_entry(out, x, y, l.label, fmt::format("<path d=\"M{} {}h16\" {}/>\n", px(x), px(y), level_style()));
 }
 
 /// An axis's name, with what its labels are less of ("time (s) − 1000000000000000").
@@ -173,8 +175,8 @@ void draw_axes(std::string& out, const panel& p, const frame& f, const axis& x_a
     std::string grid, labels;
     for (std::size_t i = 0; i < y_axis.ticks.size(); ++i) {
         const double y = f.y(y_axis.ticks[i]);
-        grid += fmt::format("M{} {}H{}", px(f.left), px(y), px(f.right));
-        labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", px(f.left - 6), px(y + 4),
+        grid += fmt::format("M{} {}H{}", px(plot_left), px(y), px(plot_right));
+        labels += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"end\">{}</text>\n", px(plot_left - 6), px(y + 4),
                               y_axis.labels[i]);
     }
     const double slack = 1e-9 * (f.x1 - f.x0);
@@ -187,9 +189,9 @@ void draw_axes(std::string& out, const panel& p, const frame& f, const axis& x_a
     }
     out += fmt::format("<path class=\"grid\" d=\"{}\" stroke=\"#E3E3E3\" stroke-width=\"1\"/>\n", grid);
     out += fmt::format("<path class=\"axis\" d=\"M{} {}V{}H{}\" fill=\"none\" stroke=\"#404040\" stroke-width=\"1\"/>\n",
-                       px(f.left), px(f.top), px(f.bottom), px(f.right));
+                       px(plot_left), px(f.top), px(f.bottom), px(plot_right));
     out += labels;
-    out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", px((f.left + f.right) / 2),
+    out += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", px((plot_left + plot_right) / 2),
                        px(f.bottom + 36), axis_name(p.x_label, x_axis));
     const double mid = (f.top + f.bottom) / 2;
     out += fmt::format("<text x=\"{0}\" y=\"{1}\" text-anchor=\"middle\" transform=\"rotate(-90 {0} {1})\">{2}</text>\n",
@@ -215,7 +217,7 @@ double draw_panel(std::string& out, const panel& p, double top) {
     std::tie(f.x0, f.x1) = xs.empty() ? std::pair(0.0, 1.0) : shown_range(xs.lo, xs.hi);
     draw_axes(out, p, f, axis_of(range{f.x0, f.x1}, 8), y_axis);
     for (const level& l : p.levels)
-        out += fmt::format("<path d=\"M{} {}H{}\" {}/>\n", px(f.left), px(f.y(l.y)), px(f.right), level_style);
+        out += fmt::format("<path d=\"M{} {}H{}\" {}/>\n", px(plot_left), px(f.y(l.y)), px(plot_right), level_style());
     for (const curve& c : p.curves) {
         std::vector<point> on_page;
         on_page.reserve(c.points.size());
