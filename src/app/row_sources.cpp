@@ -113,7 +113,7 @@ public:
     }
     void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
                      const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
-        resampler_.emplace(of(own), euler, carried, [row = std::move(row)](const sample& s) { row(table_row{s}); });
+        resampler_.emplace(of(own), euler, carried, [row](const sample& s) { row.frame(s); });
         track_ = name;
         first_.reset();
     }
@@ -216,13 +216,13 @@ public:
     }
     void begin_track(const std::string&, const std::optional<euler_seq>&, const std::optional<track_interpolation>&,
                      channels, row_sink row) override {
-        row_ = std::move(row);
+        row_ = row;
     }
-    void add(const key& k) override { row_(key_row(k)); }
+    void add(const key& k) override { row_->row(key_row(k)); }
     void end_track() override {}
 
 protected:
-    row_sink row_;
+    std::optional<row_sink> row_;
 };
 
 /// reduce: the fewest of each track's keys that replay within tolerance
@@ -260,7 +260,7 @@ public:
     }
     void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
                      const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
-        key_rows::begin_track(name, euler, own, carried, std::move(row));
+        key_rows::begin_track(name, euler, own, carried, row);
         name_ = name;
         if (watch_) watch_->begin_track(name, euler, of(own));
         // A kept key goes out as it came in: a quaternion as given, not normalised.
@@ -268,7 +268,7 @@ public:
             if (watch_) watch_->keep(k);
             table_row kept = key_row(k);
             kept.rotation = k.given_quat.value_or(k.rotation);
-            row_(kept);
+            row_->row(kept);
         });
     }
     void add(const key& k) override {

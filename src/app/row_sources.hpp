@@ -62,8 +62,19 @@ struct document_facts {
 /// The facts of a document read whole.
 document_facts facts_of(const document& doc);
 
-/// Where a row source puts a track's rows.
-using row_sink = std::function<void(const table_row&)>;
+/// Where a row source puts a track's rows: into a table, counted (how many
+/// rows the keys have made so far says whether parsing ahead pays).
+class row_sink {
+public:
+    row_sink(table_output& out, std::size_t& count) : out_(&out), count_(&count) {}
+    void row(const table_row& r) const { ++*count_, out_->row(r); }
+    /// A row that is a sample as it is (resample's frames).
+    void frame(const sample& s) const { ++*count_, out_->frame(s); }
+
+private:
+    table_output* out_;
+    std::size_t* count_;
+};
 
 /// What makes a track's rows from its keys, chosen once per input:
 /// resample's frame grid, or convert's keys as they are.

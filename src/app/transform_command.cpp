@@ -131,7 +131,7 @@ bool scan_json(const transform_plan& p, const input_source& src, document_facts&
 std::optional<document_facts> stream_rows(const transform_plan& p, const input_source& src,
                                           const document_facts* known, table_output& rows, warnings& warn) {
     std::size_t keys = 0, rows_put = 0;
-    const auto row = [&](const table_row& s) { ++rows_put, rows.row(s); };
+    const row_sink row(rows, rows_put);
     // Parsing ahead on a thread of its own pays when keys outnumber rows
     // (motion capture at 120 Hz resampled to 24 fps, say). Otherwise the
     // formatting threads keep the cores busy, and it would only cost.
@@ -192,7 +192,8 @@ void check_tracks(const transform_plan& p, const input_source& src, const std::o
 
 /// The tracks of an input read whole, whose facts are `d`.
 void whole_rows(const transform_plan& p, const document& doc, const document_facts& d, table_output& rows) {
-    const auto row = [&](const table_row& s) { rows.row(s); };
+    std::size_t rows_put = 0;
+    const row_sink row(rows, rows_put);
     for (std::size_t i = 0; i < doc.tracks.size(); ++i) {
         const track& t = doc.tracks[i];
         const channels carried = d.tracks[i].carried;

@@ -43,6 +43,7 @@ public:
         rows_.begin_track(name, carried);
     }
     void row(const table_row& s) override { rows_.row(s); }
+    void frame(const sample& s) override { rows_.frame(s); }
     void finish() override {
         rows_.finish();
         writer_->finish();

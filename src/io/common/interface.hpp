@@ -132,6 +132,8 @@ public:
     /// output states (a table has no place for it).
     virtual void begin_track(const std::string& name, channels carried, const track_interpolation& written) = 0;
     virtual void row(const table_row& s) = 0;
+    /// A row that is a sample as it is (resample's frames: the everyday row).
+    virtual void frame(const sample& s) { row(table_row{s}); }
     /// Closes the document and puts out what is left (then commits the file).
     virtual void finish() = 0;
 };

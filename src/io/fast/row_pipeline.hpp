@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <deque>
 #include <exception>
 #include <memory>
@@ -45,18 +46,15 @@ public:
         batch_.begins.push_back(*current_);
     }
     void row(const table_row& s) {
-        if (workers_.empty()) {
-            writer_.row(s);
-            out_.maybe_flush();
-            if (++inline_rows_ == inline_limit) start();
-            return;
-        }
-        batch_.rows.push_back(s);
-        batch_.rows.back().spline = nullptr;  // (a table has no place for it, and it lives as long as this call)
-        // The weights the row views live as long as this call: the batch keeps them (format() views them there).
-        if (!s.weights.empty()) batch_.weights.insert(batch_.weights.end(), s.weights.begin(), s.weights.end());
-        if (s.rates) batch_.rates.push_back(*s.rates);  // (likewise)
-        if (batch_.rows.size() == batch_rows) hand_over();
+        if (workers_.empty()) return inline_row(s);
+        if (alone(s) && !s.continuous) return pack(s, s.has_time);
+        add_full(s);
+    }
+    /// A row that is a sample as it is (resample's frames).
+    void frame(const sample& s) {
+        if (workers_.empty()) return inline_row(table_row{s});
+        if (alone(s)) return pack(s, true);
+        add_full(table_row{s});
     }
     void finish() {
         if (workers_.empty()) return;
@@ -74,13 +72,35 @@ private:
         std::string name;
         channels carried;
     };
+    /// A row as it waits in a batch: its rotation, time and frame, or where it is in full.
+    struct packed_row {
+        static constexpr std::uint32_t none = UINT32_MAX;
+        double time, frame;
+        quat rotation;
+        std::uint32_t full;  // none, or its index in batch::full (fewer than batch_rows)
+        bool has_frame, has_time;
+
+        table_row unpacked() const {
+            table_row r;
+            r.time = time, r.rotation = rotation, r.has_time = has_time;
+            if (has_frame) r.frame = frame;
+            return r;
+        }
+    };
     struct batch {
         std::size_t number = 0;
         std::optional<track_begin> resumed;  // the track the rows before the first begin belong to
-        std::vector<table_row> rows;
-        std::vector<double> weights;  // the rows' morph weights, one after another
-        std::vector<frame_rates> rates;  // the rows' angular velocities and accelerations, likewise
+        std::vector<packed_row> rows;
+        std::vector<table_row> full;  // the rows with more than a rotation
+        std::vector<double> weights;  // their morph weights, one after another
+        std::vector<frame_rates> rates;  // their angular velocities and accelerations, likewise
         std::vector<track_begin> begins;
+
+        /// Empty, its memory kept: already mapped, unlike a new vector's.
+        void clear() {
+            resumed.reset();
+            rows.clear(), full.clear(), weights.clear(), rates.clear(), begins.clear();
+        }
     };
     struct worker {
         std::unique_ptr<table_writer> own;  // formats into text; none: the one writer, straight out
@@ -88,6 +108,27 @@ private:
         std::thread thread;
     };
 
+    void inline_row(const table_row& s) {
+        writer_.row(s);
+        out_.maybe_flush();
+        if (++inline_rows_ == inline_limit) start();
+    }
+    /// A rotation with its time and frame alone, as nearly every row is.
+    static bool alone(const sample& s) { return !s.translation && !s.scale && s.weights.empty() && !s.rates; }
+    /// Such a row goes over in a third of the bytes: this thread is the one the others wait for.
+    void pack(const sample& s, bool has_time) {
+        batch_.rows.push_back({s.time, s.frame.value_or(0), s.rotation, packed_row::none, s.frame.has_value(), has_time});
+        if (batch_.rows.size() == batch_rows) hand_over();
+    }
+    void add_full(const table_row& s) {
+        batch_.rows.push_back({0, 0, {}, static_cast<std::uint32_t>(batch_.full.size()), false, false});
+        batch_.full.push_back(s);
+        batch_.full.back().spline = nullptr;  // (a table has no place for it, and it lives as long as this call)
+        // The weights the row views live as long as this call: the batch keeps them (format() views them there).
+        if (!s.weights.empty()) batch_.weights.insert(batch_.weights.end(), s.weights.begin(), s.weights.end());
+        if (s.rates) batch_.rates.push_back(*s.rates);  // (likewise)
+        if (batch_.rows.size() == batch_rows) hand_over();
+    }
     /// Starts the workers the system gives threads to: with none, every row
     /// is formatted on this thread, as for a small output.
     void start() {
@@ -111,15 +152,15 @@ private:
         changed_.wait(lock, [this] { return queue_.size() < max_batches || failure_; });
         if (failure_) std::rethrow_exception(failure_);
         queue_.push_back(std::move(batch_));
-        batch_ = batch{};
-        batch_.number = ++batches_;
-        if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
-        if (spare_rows_.empty()) {
+        if (spare_.empty()) {
+            batch_ = batch{};
             batch_.rows.reserve(batch_rows);
         } else {
-            batch_.rows = std::move(spare_rows_.back());
-            spare_rows_.pop_back();
+            batch_ = std::move(spare_.back());
+            spare_.pop_back();
         }
+        batch_.number = ++batches_;
+        if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
         changed_.notify_all();
     }
     void stop() {
@@ -152,9 +193,9 @@ private:
         std::unique_lock lock(mutex_);
         changed_.wait(lock, [this] { return !queue_.empty() || done_ || failure_; });
         if (queue_.empty() || failure_) return false;
-        if (b.rows.capacity() != 0) {  // formatted: its memory is already mapped, unlike a new vector's
-            b.rows.clear();
-            spare_rows_.push_back(std::move(b.rows));
+        if (b.rows.capacity() != 0) {  // formatted: its memory for the next batches
+            b.clear();
+            spare_.push_back(std::move(b));
         }
         b = std::move(queue_.front());
         queue_.pop_front();
@@ -170,10 +211,13 @@ private:
             for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
                 writer.begin_track(b.begins[next_begin].name, b.begins[next_begin].carried);
             if (i == b.rows.size()) break;
-            if (!weighted || (b.rows[i].weights.empty() && !b.rows[i].rates)) {
-                writer.row(b.rows[i]);
+            const packed_row& p = b.rows[i];
+            if (p.full == packed_row::none) {
+                writer.row(p.unpacked());
+            } else if (!weighted || (b.full[p.full].weights.empty() && !b.full[p.full].rates)) {
+                writer.row(b.full[p.full]);
             } else {
-                table_row s = b.rows[i];
+                table_row s = b.full[p.full];
                 s.weights = std::span(b.weights).subspan(weights, s.weights.size());
                 weights += s.weights.size();
                 if (s.rates) s.rates = &b.rates[rates++];
@@ -191,7 +235,7 @@ private:
     std::optional<track_begin> current_;
     std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
-    std::vector<std::vector<table_row>> spare_rows_;  // for the next batches, so that no row lands on a fresh page
+    std::vector<batch> spare_;  // formatted, for the next batches, so that no row lands on a fresh page
     std::mutex mutex_;
     std::condition_variable changed_;
     bool done_ = false;
