@@ -266,6 +266,21 @@ def make_cases(work):
     c.end()
     cases.append((c, "glb"))
 
+    # A rig as a capture gives it: every joint's rotation and translation on one set of times, the
+    # translations still but the root's; and a scale written as a single key (a value for the whole
+    # animation, held before and after it as glTF holds a sampler).
+    c = Case("rig.glb")
+    c.b.skeleton(12)
+    c.begin()
+    t = np.arange(90) / 60
+    for j in range(12):
+        c.channel(f"joint{j}", j, "rotation", t, random_quats(rng, 90, 0.1))
+        still = np.tile([0.0, 0.1 * (j % 5), 0.0], (90, 1))
+        c.channel(f"joint{j}", j, "translation", t, still + (rng.normal(size=(90, 3)) if j == 0 else 0))
+    c.channel("joint4", 4, "scale", t[30:31], [[1.0, 2.0, 3.0]])
+    c.end()
+    cases.append((c, "glb"))
+
     # Two animations on a 60-joint skeleton: tracks "Walk/joint3", "Run/joint3".
     c = Case("two.glb")
     c.b.skeleton(60)
@@ -487,6 +502,71 @@ def check_gltf_output(case, fps, how, written):
     print(f"ok: {out}: reads back as the frames, the rest of the file kept, {len(bin_out)} bytes of buffer")
 
 
+def keys_per_channel(doc, node_key):
+    """The keys of each channel of the first animation, by (node_key(node), path)."""
+    anim = doc["animations"][0]
+    return {(node_key(c["target"]["node"]), c["target"]["path"]):
+            doc["accessors"][anim["samplers"][c["sampler"]]["output"]]["count"] for c in anim["channels"]}
+
+
+def check_rig_layout(case, written):
+    """resample of a rig into .glb: one time accessor for all channels on one set of times, a
+    channel that never changes written as one key; and convert reads such a key on every row."""
+    global checks
+    out = f"{os.path.splitext(case.path)[0]}_30.glb"  # (check_gltf_output wrote it)
+    if out not in written:
+        return
+    doc, _ = G.parts(out)
+    anim = doc["animations"][0]
+    inputs = {anim["samplers"][c["sampler"]]["input"] for c in anim["channels"]}
+    counts = keys_per_channel(doc, lambda node: node)
+    grid = max(counts.values())
+    want = {(j, "translation"): 1 for j in range(1, 12)}
+    want.update({(j, "rotation"): grid for j in range(12)})
+    want.update({(0, "translation"): grid, (4, "scale"): 1})
+    if len(inputs) != 2 or counts != want:
+        fail(f"{out}: {len(inputs)} time accessors (expected 2: the frames' and a single key's), "
+             f"keys per channel {counts}")
+        return
+    for read in (case.path, out):
+        status, text, err = run(["convert", read, "--to", "csv", "--rep", "quat"])
+        rows = read_csv(text)
+        if status != 0 or any(r["tx"] == "" for r in rows) or any(
+                (r["sx"], r["sy"], r["sz"]) != ("1", "2", "3") for r in rows if r["track"] == "joint4"):
+            fail(f"convert {read}: a translation or scale missing from a row, or not the one key's: {err.strip()}")
+            return
+    checks += 1
+    print(f"ok: {out}: one time accessor for the frames, still channels as one key, read on every row")
+
+
+def check_new_file_still_channels(work, written):
+    """A new file of CSV tracks: a translation or scale that never changes is one key, read back on every row."""
+    global checks
+    source, out = os.path.join(work, "still.csv"), os.path.join(work, "still.glb")
+    with open(source, "w") as f:
+        f.write("track,time,qw,qx,qy,qz,tx,ty,tz,sx,sy,sz\n")
+        for i in range(20):
+            a = 0.05 * i
+            f.write(f"arm,{i / 24},{math.cos(a)},0,0,{math.sin(a)},0.5,1,2,1,1,1\n")
+            f.write(f"leg,{i / 24},{math.cos(a)},{math.sin(a)},0,0,{a},1,2,1,{1 + a},1\n")
+    status, _, err = run(["resample", source, "-o", out])
+    if status != 0:
+        fail(f"{out}: {err.strip()}")
+        return
+    written.append(out)
+    doc, _ = G.parts(out)
+    counts = keys_per_channel(doc, lambda node: doc["nodes"][node]["name"])
+    want = {("arm", "rotation"): 20, ("arm", "translation"): 1, ("arm", "scale"): 1,
+            ("leg", "rotation"): 20, ("leg", "translation"): 20, ("leg", "scale"): 20}
+    _, direct, _ = run(["resample", source, "--to", "csv", "--rep", "quat"])
+    _, back, _ = run(["convert", out, "--to", "csv", "--rep", "quat"])
+    if counts != want or not compare_frames(f"{out} read back", direct, back, FLOAT32_DEG):
+        fail(f"{out}: keys per channel {counts}, expected {want}")
+        return
+    checks += 1
+    print(f"ok: {out}: still channels as one key, read back on every row")
+
+
 def check_new_files(work, written):
     """Tracks from CSV and JSON into a new glTF file: a node per track, frames as in CSV."""
     global checks
@@ -704,9 +784,11 @@ def main():
         for case in cases:
             check_gltf_output(case, 30, "glb", written)
             check_gltf_output(case, 24, "gltf", written)
+        check_rig_layout(next(c for c in cases if c.name == "rig.glb"), written)
         check_cubic_kept(cases[2], work, written)
         check_step_output(cases[0], work, written)
         check_new_files(work, written)
+        check_new_file_still_channels(work, written)
         validate(written)
         check_bad(work)
     print(f"gltf_test: {checks} checks, {len(failures)} failures")

@@ -75,14 +75,20 @@ protected:
         if (spool_ && offset_ == spool_->size) return copied_more() ? traits_type::to_int_type(*gptr()) : traits_type::eof();
         const off_t end = spool_ ? spool_->size : end_;
         if (offset_ >= end) return traits_type::eof();  // what grew since is not what was checked
-        ssize_t got;
-        do got = ::pread(fd_, buffer_.data(), std::min<std::size_t>(buffer_.size(), static_cast<std::size_t>(end - offset_)), offset_);
-        while (got < 0 && errno == EINTR);
-        if (got < 0) throw error(fmt::format("cannot read '{}': {}", source_, errno_text()));
-        if (got == 0) throw error(changed_while_read(source_));
-        offset_ += got;
+        const std::size_t got = read_at_offset(buffer_.data(), std::min(buffer_.size(), static_cast<std::size_t>(end - offset_)));
         setg(buffer_.data(), buffer_.data(), buffer_.data() + got);
         return traits_type::to_int_type(*gptr());
+    }
+
+    /// A read of more than the buffer holds (a glTF file whole) goes
+    /// straight into the caller's memory: one copy, not two.
+    std::streamsize xsgetn(char_type* s, std::streamsize n) override {
+        std::streamsize done = std::min<std::streamsize>(n, egptr() - gptr());
+        traits_type::copy(s, gptr(), static_cast<std::size_t>(done));
+        setg(eback(), gptr() + done, egptr());
+        for (std::size_t left; !spool_ && offset_ < end_ && (left = static_cast<std::size_t>(n - done)) > buffer_.size();)
+            done += static_cast<std::streamsize>(read_at_offset(s + done, std::min(left, static_cast<std::size_t>(end_ - offset_))));
+        return done + std::streambuf::xsgetn(s + done, n - done);
     }
 
     /// The bytes known to be left, so that a reader of the whole stream
@@ -90,6 +96,16 @@ protected:
     std::streamsize showmanyc() override { return (spool_ ? spool_->size : end_) - offset_; }
 
 private:
+    /// Up to `most` (> 0) bytes at the file's offset, which moves past them.
+    std::size_t read_at_offset(char* into, std::size_t most) {
+        ssize_t got;
+        do got = ::pread(fd_, into, most, offset_);
+        while (got < 0 && errno == EINTR);
+        if (got < 0) throw error(fmt::format("cannot read '{}': {}", source_, errno_text()));
+        if (got == 0) throw error(changed_while_read(source_));
+        offset_ += got;
+        return static_cast<std::size_t>(got);
+    }
     /// More of a spooled input, read and copied; false at its end.
     bool copied_more() {
         if (spool_->complete) return false;

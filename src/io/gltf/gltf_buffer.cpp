@@ -66,7 +66,18 @@ std::size_t buffer_builder::accessor(const std::vector<float>& values, std::size
         for (std::size_t i = 0; i < values.size(); ++i)
             lo[i % width] = std::min(lo[i % width], values[i]), hi[i % width] = std::max(hi[i % width], values[i]);
     }
-    return accessor(view(data), values.size() / width, width, lo, hi);
+    if (!shared_) return accessor(view(data), values.size() / width, width, lo, hi);
+    if (!shared_->index) shared_->index = begin_view(0, 0), shared_->start = bin.size();
+    const std::size_t offset = bin.size() - shared_->start;
+    bin.append(data);  // (floats: the next accessor's offset stays a multiple of 4)
+    const std::size_t a = accessor(*shared_->index, values.size() / width, width, lo, hi);
+    if (offset != 0) json_["accessors"][a]["byteOffset"] = offset;
+    return a;
+}
+
+void buffer_builder::end_shared_view() {
+    if (shared_ && shared_->index) json_["bufferViews"][*shared_->index]["byteLength"] = bin.size() - shared_->start;
+    shared_.reset();
 }
 
 std::size_t buffer_builder::accessor(std::size_t view, std::size_t count, std::size_t width,

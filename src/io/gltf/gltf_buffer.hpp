@@ -46,15 +46,26 @@ public:
     std::size_t view(std::string_view data, std::size_t remainder = 0);
     /// A bufferView of what `data` holds.
     std::size_t view(byte_spool& data);
-    /// A FLOAT accessor of `values` (`width` per element), with min and max when `bounds`.
+    /// A FLOAT accessor of `values` (`width` per element), with min and max
+    /// when `bounds`: in a bufferView of its own, or in the shared one.
     std::size_t accessor(const std::vector<float>& values, std::size_t width, bool bounds);
+    /// Until end_shared_view(), the accessors of values share one bufferView
+    /// (nothing else may be added to the buffer meanwhile): a view each
+    /// costs more JSON than a key's worth of data.
+    void begin_shared_view() { shared_ = shared_view{}; }
+    void end_shared_view();
     /// A FLOAT accessor of `count` elements of `width` in bufferView `view`,
     /// with the bounds `lo` and `hi` where they are given.
     std::size_t accessor(std::size_t view, std::size_t count, std::size_t width, const std::vector<float>& lo,
                          const std::vector<float>& hi);
 
 private:
+    struct shared_view {
+        std::optional<std::size_t> index;  // made with its first accessor (a bufferView is never empty)
+        std::size_t start = 0;
+    };
     std::size_t begin_view(std::size_t length, std::size_t remainder);
+    std::optional<shared_view> shared_;
     std::size_t append(const char* name, gltf_json value);
     gltf_json& json_;
 };

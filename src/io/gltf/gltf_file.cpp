@@ -307,27 +307,27 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
                     std::size_t max_bytes) {
     gltf_file file{source, directory, max_bytes, {}, {}, std::nullopt, {}};
     std::string bytes;
-    // In one piece where the stream knows its size (a file), else a piece at a time.
+    // In one piece where the stream knows its size (a file; keyrot's own
+    // input streams say what is left), then, where it could not seek, a
+    // piece at a time to its end.
     in.seekg(0, std::ios::end);
-    if (const std::streamoff size = in.tellg(); in && size >= 0) {
-        if (static_cast<std::size_t>(size) > max_bytes)
-            bytes.resize(max_bytes + 1);
-        else
-            bytes.resize(static_cast<std::size_t>(size));
-        in.seekg(0);
+    std::streamoff size = in.tellg();
+    const bool seekable = in && size >= 0;
+    in.clear();
+    in.seekg(0);
+    in.clear();
+    if (!seekable) size = in.rdbuf()->in_avail();
+    if (size > 0) {
+        bytes.resize(std::min(static_cast<std::size_t>(size), max_bytes + 1));
         in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         bytes.resize(static_cast<std::size_t>(in.gcount()));
-    } else {
-        in.clear();
-        in.seekg(0);
-        in.clear();
-        // Input that cannot begin a glTF file (/dev/zero, say) is not read
-        // on to the limit: what came is parsed, which says what is wrong.
-        for (char chunk[1 << 16]; bytes.size() <= max_bytes && (in.read(chunk, sizeof chunk) || in.gcount() > 0);) {
-            bytes.append(chunk, static_cast<std::size_t>(in.gcount()));
-            if (!could_begin_gltf(bytes, f)) break;
-        }
     }
+    // Input that cannot begin a glTF file (/dev/zero, say) is not read on
+    // to the limit: what came is parsed, which says what is wrong.
+    if (!seekable)
+        for (char chunk[1 << 16]; bytes.size() <= max_bytes && could_begin_gltf(bytes, f) &&
+                                  (in.read(chunk, sizeof chunk) || in.gcount() > 0);)
+            bytes.append(chunk, static_cast<std::size_t>(in.gcount()));
     if (bytes.size() > max_bytes)
         throw input_error(
             source,
@@ -344,8 +344,8 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
     return file;
 }
 
-std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const std::string& path,
-                                  const accessor_kind& kind) {
+void read_accessor(gltf_file& file, const gltf_json& index, const std::string& path, const accessor_kind& kind,
+                   std::vector<double>& values) {
     const std::string at = where(file.source, path);
     const std::size_t a = index_into(file, index, "accessors", at);
     const gltf_json& acc = top_array(file, "accessors")[a];
@@ -367,7 +367,7 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
     const std::size_t count = unsigned_member(acc, "count", 0, here);
     if (count == 0) throw input_error(here, "count: expected at least 1 element");
     const std::size_t n = components_of(type), element = n * static_cast<std::size_t>(c->bytes);
-    std::vector<double> values(count * n, 0.0);
+    values.assign(count * n, 0.0);
     if (acc.contains("bufferView")) {
         const auto [bytes, byte_stride] = buffer_view(file, acc["bufferView"], here);
         const std::size_t stride = byte_stride ? byte_stride : element;
@@ -424,7 +424,6 @@ std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const
     for (std::size_t i = 0; i < values.size(); ++i)
         if (!std::isfinite(values[i]))
             throw input_error(here, fmt::format("element {} is not finite: expected finite numbers", i / n));
-    return values;
 }
 
 }  // namespace keyrot

@@ -46,8 +46,9 @@ struct accessor_kind {
 /// (byteStride, normalised integers, sparse substitution). `path` names what
 /// refers to it, for messages: "walk.glb: animations[0].samplers[2].output:
 /// accessor 14 reads past the end of buffer 0".
-std::vector<double> read_accessor(gltf_file& file, const gltf_json& index, const std::string& path,
-                                  const accessor_kind& kind);
+/// They go into `values`, whose memory is reused.
+void read_accessor(gltf_file& file, const gltf_json& index, const std::string& path, const accessor_kind& kind,
+                   std::vector<double>& values);
 
 /// Buffer `i`'s bytes (the BIN chunk, a data: URI's, a file's), read on
 /// first use. Precondition: i indexes buffers.

@@ -5,6 +5,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <map>
 #include <tuple>
 
 #include "io/gltf/gltf_buffer.hpp"
@@ -102,12 +105,15 @@ public:
     }
 
 private:
-    /// A channel of the current track: its key times and values as 32-bit floats, set aside.
+    /// A channel of the current track: its key times and values as 32-bit
+    /// floats, set aside; its first value, and whether every one is that.
     struct spooled_channel {
         byte_spool times, values;
         std::size_t count = 0;
         float first = 0, last = 0;
-        void clear() { times.clear(), values.clear(), count = 0; }
+        std::string first_value;
+        bool still = true;
+        void clear() { times.clear(), values.clear(), count = 0, still = true; }
         void add(float time, std::initializer_list<double> value, const auto& where, const char* what) {
             std::string bytes;
             append_float(bytes, time);
@@ -115,7 +121,8 @@ private:
             bytes.clear();
             for (const double v : value) append_float(bytes, single_at(v, where, what));
             values.append(bytes);
-            if (count++ == 0) first = time;
+            if (count++ == 0) first = time, first_value = bytes;
+            else still = still && bytes == first_value;
             last = time;
         }
     };
@@ -126,7 +133,10 @@ private:
     };
 
     /// The current track's channels into the buffer, as samplers (the
-    /// rotation's times shared by a channel keyed on every row).
+    /// rotation's times shared by a channel keyed on every row). A
+    /// translation or scale on every row that never changes is written as
+    /// one key, which glTF holds for the whole animation and keyrot reads at
+    /// every key of the track.
     void end_track() {
         if (tracks_.empty() || !tracks_.back().samplers.empty() || rotation_.count == 0) return;
         written_track& t = tracks_.back();
@@ -136,16 +146,29 @@ private:
                                                   std::tuple(&scale_, "scale", 3, t.how.scale)}) {
             if (c->count == 0) continue;
             const auto times = [&, c = c] { return b_.accessor(b_.view(c->times), c->count, 1, {c->first}, {c->last}); };
+            const bool one_key = c != &rotation_ && c->count == rotation_.count && c->count > 1 && c->still;
             std::size_t input;
-            if (c->count != rotation_.count) input = times();
+            if (one_key) input = single_time(c->first);
+            else if (c->count != rotation_.count) input = times();
             else input = rotation_times ? *rotation_times : *(rotation_times = times());
+            const std::size_t values = one_key ? b_.view(c->first_value) : b_.view(c->values);
             gltf_json sampler = gltf_json::object();
             sampler["input"] = input;
             sampler["interpolation"] = interpolation_name(how);
-            sampler["output"] = b_.accessor(b_.view(c->values), c->count, static_cast<std::size_t>(width), {}, {});
+            sampler["output"] = b_.accessor(values, one_key ? 1 : c->count, static_cast<std::size_t>(width), {}, {});
             samplers_.push_back(std::move(sampler));
             t.samplers.emplace_back(path, samplers_.size() - 1);
         }
+    }
+    /// The accessor of the one key time `time`, shared by the tracks whose first key it is.
+    std::size_t single_time(float time) {
+        const auto [at, made] = single_times_.try_emplace(std::bit_cast<std::uint32_t>(time), 0);
+        if (made) {
+            std::string bytes;
+            append_float(bytes, time);
+            at->second = b_.accessor(b_.view(bytes), 1, 1, {time}, {time});
+        }
+        return at->second;
     }
 
     format f_;
@@ -158,6 +181,7 @@ private:
     gltf_json samplers_ = gltf_json::array();
     std::vector<written_track> tracks_;
     spooled_channel rotation_, translation_, scale_;
+    std::map<std::uint32_t, std::size_t> single_times_;  // single_time's, by the time's bits
     double previous_time_ = 0;
 };
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <set>
 #include <span>
@@ -26,12 +27,32 @@ struct channel_curve {
     std::vector<double> values;  // per key: width values; CUBICSPLINE: in-tangent, value, out-tangent
 
     std::size_t keys() const { return times.size(); }
+    /// The first key at or after `time` (as std::lower_bound), sought from
+    /// the one found before: a track's key times are asked in increasing order.
+    std::size_t first_key_from(double time) const {
+        if (hint_ > 0 && !(times[hint_ - 1] < time)) hint_ = 0;  // (asked for an earlier time: from the start)
+        std::size_t i = hint_;
+        for (int steps = 0; i < times.size() && times[i] < time; ++i)
+            if (++steps == 8) {  // far ahead: by bisection
+                i = static_cast<std::size_t>(
+                    std::lower_bound(times.begin() + static_cast<std::ptrdiff_t>(i), times.end(), time) - times.begin());
+                break;
+            }
+        return hint_ = i;
+    }
+    /// The last key at or before `time`, which is within the keys.
+    std::size_t key_before(double time) const {
+        const std::size_t i = first_key_from(time);
+        return i < times.size() && times[i] == time ? i : i - 1;
+    }
     const double* element(std::size_t key, int part) const {  // part: -1 in-tangent, 0 value, 1 out-tangent
         const std::size_t per_key = how == method::cubicspline ? 3 : 1;
         const std::size_t slot = how == method::cubicspline ? static_cast<std::size_t>(part + 1) : 0;
         return values.data() + (key * per_key + slot) * width;
     }
     std::span<const double> get(std::size_t key, int part) const { return {element(key, part), width}; }
+
+    mutable std::size_t hint_ = 0;  // first_key_from's last answer
 };
 
 /// What a channel of a node animates: its glTF target path.
@@ -43,11 +64,12 @@ method method_of(const std::string& interpolation) {
     return method::slerp;
 }
 
-/// A sampler's input and output for a channel of `kind` (`width`: the number of morph targets, for weights).
-channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std::string& path, channel_kind kind,
-                           std::size_t width) {
+/// A sampler's input and output for a channel of `kind` (`width`: the
+/// number of morph targets, for weights), into `c` (its memory reused).
+void read_sampler(gltf_file& file, const gltf_json& sampler, const std::string& path, channel_kind kind,
+                  std::size_t width, channel_curve& c) {
     const bool rotation = kind == channel_kind::rotation, weights = kind == channel_kind::weights;
-    channel_curve c{path, {}, rotation ? 4 : weights ? width : 3, method::slerp, {}};
+    c.path = path, c.width = rotation ? 4 : weights ? width : 3, c.how = method::slerp, c.hint_ = 0;
     const std::string at = where(file.source, path);
     if (!sampler.is_object() || !sampler.contains("input") || !sampler.contains("output"))
         throw input_error(at, "expected an object with input and output");
@@ -56,14 +78,14 @@ channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std:
         throw input_error(
             at, fmt::format("interpolation '{}': expected LINEAR, STEP or CUBICSPLINE", excerpt(interpolation)));
     c.how = method_of(interpolation);
-    c.times = read_accessor(file, sampler["input"], path + ".input", {"SCALAR", false});
+    read_accessor(file, sampler["input"], path + ".input", {"SCALAR", false}, c.times);
     for (std::size_t i = 1; i < c.times.size(); ++i)
         if (!(c.times[i] > c.times[i - 1]))
             throw input_error(at + ".input", fmt::format("time {} s at key {} is not after the previous key's {} s: "
                                                          "expected strictly increasing times",
                                                          c.times[i], i, c.times[i - 1]));
-    c.values = read_accessor(file, sampler["output"], path + ".output",
-                             {rotation ? "VEC4" : weights ? "SCALAR" : "VEC3", true});
+    read_accessor(file, sampler["output"], path + ".output", {rotation ? "VEC4" : weights ? "SCALAR" : "VEC3", true},
+                  c.values);
     const std::size_t per_key = c.how == method::cubicspline ? 3 : 1;
     const char* const spline_note = per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent per key)" : "";
     if (weights && c.values.size() != c.keys() * per_key * c.width)
@@ -82,7 +104,6 @@ channel_curve read_sampler(gltf_file& file, const gltf_json& sampler, const std:
             c.values[i + 3] = c.values[i + 2], c.values[i + 2] = c.values[i + 1], c.values[i + 1] = c.values[i];
             c.values[i] = w;
         }
-    return c;
 }
 
 /// The curve's components at `time` within its keys, and, for
@@ -95,8 +116,7 @@ void evaluate(const channel_curve& c, double time, std::span<double> value, std:
     const auto put = [&](std::span<const double> v) { std::copy(v.begin(), v.end(), value.begin()); };
     if (time <= c.times.front()) return put(c.get(0, 0));
     if (time >= c.times.back()) return put(c.get(c.keys() - 1, 0));
-    const std::size_t i =
-        static_cast<std::size_t>(std::upper_bound(c.times.begin(), c.times.end(), time) - c.times.begin()) - 1;
+    const std::size_t i = c.key_before(time);
     if (c.times[i] == time || c.how == method::step) return put(c.get(i, 0));
     const double seconds = c.times[i + 1] - c.times[i], h = (time - c.times[i]) / seconds;
     const auto v0 = c.get(i, 0), v1 = c.get(i + 1, 0);
@@ -116,8 +136,7 @@ void evaluate(const channel_curve& c, double time, std::span<double> value, std:
 /// A LINEAR rotation curve's value at `time` between two of its keys, as
 /// the specification interpolates it: by slerp the short way.
 quat slerp_at(const channel_curve& c, double time) {
-    const std::size_t i =
-        static_cast<std::size_t>(std::upper_bound(c.times.begin(), c.times.end(), time) - c.times.begin()) - 1;
+    const std::size_t i = c.key_before(time);
     const double h = (time - c.times[i]) / (c.times[i + 1] - c.times[i]);
     const auto a = c.get(i, 0), b = c.get(i + 1, 0);
     const quat qa = normalized({a[0], a[1], a[2], a[3]});
@@ -309,25 +328,29 @@ private:
     void begin(std::size_t i) {
         const gltf_track_origin& o = tracks_[i].origin;
         const gltf_json& anim = top_array(file_, "animations")[o.animation];
-        const auto read = [&](std::optional<std::size_t> channel, channel_kind kind) -> std::optional<channel_curve> {
-            if (!channel) return std::nullopt;
+        // (into the last track's channels: their memory is already mapped)
+        const auto read = [&](std::optional<std::size_t> channel, channel_kind kind, std::optional<channel_curve>& c) {
+            if (!channel) return c.reset();
+            if (!c) c.emplace();
             const std::size_t s = anim["channels"][*channel]["sampler"];
-            return read_sampler(file_, anim["samplers"][s], fmt::format("animations[{}].samplers[{}]", o.animation, s),
-                                kind, o.targets);
+            read_sampler(file_, anim["samplers"][s], fmt::format("animations[{}].samplers[{}]", o.animation, s), kind,
+                         o.targets, *c);
         };
-        rotation_ = read(o.rotation, channel_kind::rotation);
-        translation_ = read(o.translation, channel_kind::translation);
-        scale_ = read(o.scale, channel_kind::scale);
-        weights_ = read(o.weights, channel_kind::weights);
+        read(o.rotation, channel_kind::rotation, rotation_);
+        read(o.translation, channel_kind::translation, translation_);
+        read(o.scale, channel_kind::scale, scale_);
+        read(o.weights, channel_kind::weights, weights_);
         times_.clear();
         spline_ = false;
         for (const std::optional<channel_curve>* c : {&rotation_, &translation_, &scale_, &weights_}) {
             if (!*c) continue;
-            times_.insert(times_.end(), (*c)->times.begin(), (*c)->times.end());
+            // (each channel's times strictly increase: merged, not sorted)
+            merged_.clear();
+            std::set_union(times_.begin(), times_.end(), (*c)->times.begin(), (*c)->times.end(),
+                           std::back_inserter(merged_));
+            times_.swap(merged_);
             spline_ = spline_ || (*c)->how == method::cubicspline;
         }
-        std::sort(times_.begin(), times_.end());
-        times_.erase(std::unique(times_.begin(), times_.end()), times_.end());
         rest_ = rotation_ ? quat{} : rest_rotation(file_, o.node);
         node_ = o.node;
         settings_ = flags_;
@@ -383,7 +406,7 @@ private:
     /// there are zero. Returns the key's index where `t` is one of c's keys.
     std::optional<std::size_t> components_at(const channel_curve& c, double t, bool held, std::span<double> value,
                                              std::span<double> in, std::span<double> out) const {
-        const auto key = std::lower_bound(c.times.begin(), c.times.end(), t);
+        const auto key = c.times.begin() + static_cast<std::ptrdiff_t>(c.first_key_from(t));
         if (key == c.times.end() || *key != t) {
             evaluate(c, t, value, in);
             std::copy(in.begin(), in.end(), out.begin());
@@ -403,8 +426,15 @@ private:
     }
 
     /// A translation or scale channel at time `t`, with its tangents there:
-    /// its key, or its curve's value; nothing outside its keys (it is held).
+    /// its key, or its curve's value; nothing outside its keys (it is
+    /// held), but a channel of one key is that key at every time: a value
+    /// for the whole animation, as glTF holds it (and as keyrot writes a
+    /// channel that never changes).
     std::optional<vec3> vector_at(const channel_curve& c, double t, vec3& in, vec3& out) const {
+        if (c.keys() == 1) {
+            const auto v = c.get(0, 0);
+            return vec3{v[0], v[1], v[2]};
+        }
         if (t < c.times.front() || t > c.times.back()) return std::nullopt;
         std::array<double, 3> v{}, before{}, after{};
         components_at(c, t, false, v, before, after);
@@ -418,7 +448,7 @@ private:
     key_settings flags_, settings_;
     std::size_t next_track_ = 0, key_ = 0, node_ = 0;
     std::optional<channel_curve> rotation_, translation_, scale_, weights_;
-    std::vector<double> times_;
+    std::vector<double> times_, merged_;
     bool spline_ = false;
     quat rest_;
 };

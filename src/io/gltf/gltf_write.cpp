@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <bit>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "io/common/output.hpp"
 #include "io/gltf/gltf_buffer.hpp"
@@ -122,17 +125,36 @@ std::pair<const gltf_vectors*, method> vectors_of(const gltf_track& t, gltf_path
     return {nullptr, t.how.rotation};
 }
 
-/// A sampler of track `t`'s channel `path` into `animation`; returns its index.
-std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_track& t, gltf_path path,
-                        std::map<const std::vector<double>*, std::size_t>& inputs) {
+/// Whether every key of `values` (`width` floats each) is the first, bit for bit.
+bool constant(const std::vector<float>& values, std::size_t width) {
+    for (std::size_t i = width; i < values.size(); ++i)
+        if (std::bit_cast<std::uint32_t>(values[i]) != std::bit_cast<std::uint32_t>(values[i % width])) return false;
+    return true;
+}
+
+/// What a rewritten file's new samplers share: an accessor for each list
+/// of key times (as 32-bit floats), one for each value of a single key (with
+/// its element's width), and per animation a sampler for each (input,
+/// output, interpolation).
+struct shared_parts {
+    std::map<std::vector<float>, std::size_t> inputs;
+    std::map<std::pair<std::size_t, std::vector<float>>, std::size_t> single_values;
+    std::map<std::pair<std::size_t, std::tuple<std::size_t, std::size_t, std::string>>, std::size_t> samplers;
+};
+
+/// A sampler of track `t`'s channel `path` into animation `a`; returns its
+/// index. What another sampler already has is shared (`shared`). With
+/// `collapse` (the track's rotation is written, on every key of the
+/// track), a translation, scale or weights channel on the rotation's times
+/// whose values never change (as 32-bit floats), LINEAR or STEP, is written
+/// as its first key alone: glTF holds a sampler's value beyond its keys,
+/// and keyrot reads a key that is alone at every key of its track.
+std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const gltf_track& t, gltf_path path,
+                        shared_parts& shared, bool collapse) {
     const auto [vectors, how] = vectors_of(t, path);
     const std::vector<double>& times = vectors ? vectors->times : t.times;
-    // Channels on the rotation's times share its input.
-    const std::vector<double>* input_times = vectors && vectors->times == t.times ? &t.times : &times;
     const std::string where = t.name.empty() ? b.source : keyrot::where(b.source, fmt::format("track '{}'", t.name));
-    auto input = inputs.find(input_times);
-    if (input == inputs.end()) input = inputs.emplace(input_times, b.accessor(time_values(times, where), 1, true)).first;
-    std::vector<float> values;
+    std::vector<float> key_times = time_values(times, where), values;
     const auto put = [&](std::initializer_list<double> v) {
         for (const double x : v) values.push_back(single(x, where, path_name(path)));
     };
@@ -154,13 +176,27 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& animation, const gltf_trac
             put({q.x, q.y, q.z, q.w});
         }
     }
-    gltf_json sampler = gltf_json::object();
-    sampler["input"] = input->second;
-    sampler["interpolation"] = interpolation_name(how);
+    if (collapse && vectors && !spline && vectors->times == t.times && constant(values, vectors->width))
+        key_times.resize(1), values.resize(vectors->width);
+    auto input = shared.inputs.find(key_times);
+    if (input == shared.inputs.end()) input = shared.inputs.emplace(key_times, b.accessor(key_times, 1, true)).first;
     // (weights are SCALAR, a weight per morph target in each key's element)
-    sampler["output"] = b.accessor(values, !vectors ? 4 : path == gltf_path::weights ? 1 : 3, false);
-    animation["samplers"].push_back(std::move(sampler));
-    return animation["samplers"].size() - 1;
+    const std::size_t width = !vectors ? 4 : path == gltf_path::weights ? 1 : 3;
+    std::size_t output;
+    if (key_times.size() == 1) {
+        auto single = shared.single_values.find({width, values});
+        if (single == shared.single_values.end())
+            single = shared.single_values.emplace(std::pair(width, values), b.accessor(values, width, false)).first;
+        output = single->second;
+    } else {
+        output = b.accessor(values, width, false);
+    }
+    const auto [sampler, made] = shared.samplers.try_emplace(
+        {a, {input->second, output, interpolation_name(how)}}, json["animations"][a]["samplers"].size());
+    if (made)
+        json["animations"][a]["samplers"].push_back(
+            {{"input", input->second}, {"interpolation", interpolation_name(how)}, {"output", output}});
+    return sampler->second;
 }
 
 /// The input file with the samplers of the channels keyrot read replaced.
@@ -271,13 +307,16 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
         view["byteOffset"] = placed;
     }
     // The new samplers and channels.
-    std::map<std::size_t, std::map<const std::vector<double>*, std::size_t>> inputs;  // per animation
+    shared_parts shared;
+    b.begin_shared_view();
     for (const auto& [at, who] : replaced) {
         const auto [a, c] = at;
         const auto [i, path] = who;
-        gltf_json& anim = json["animations"][a];
-        anim["channels"][c]["sampler"] = add_sampler(b, anim, tracks[i], path, inputs[a]);
+        const bool collapse = source.origins[i].rotation.has_value();
+        const std::size_t sampler = add_sampler(b, json, a, tracks[i], path, shared, collapse);
+        json["animations"][a]["channels"][c]["sampler"] = sampler;
     }
+    b.end_shared_view();
 }
 
 /// Relative image URIs of the input, made relative to where the output goes.
@@ -302,6 +341,12 @@ public:
         : f_(f), target_(target), commit_(commit), out_(out), source_(std::move(source)), warn_(warn) {}
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
         tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
+        if (tracks_.size() < 2) return;
+        // A rig's tracks are as long as each other: room for as many rows as the track before had.
+        gltf_track &t = tracks_.back(), &before = tracks_[tracks_.size() - 2];
+        t.times.reserve(before.times.size()), t.rotations.reserve(before.rotations.size());
+        for (const auto& [v, b] : {std::pair(&t.translation, &before.translation), std::pair(&t.scale, &before.scale)})
+            v->times.reserve(b->times.size()), v->values.reserve(b->values.size());
     }
     void row(const table_row& s) override {
         gltf_track& t = tracks_.back();

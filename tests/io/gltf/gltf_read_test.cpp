@@ -125,7 +125,8 @@ TEST_CASE("glTF: normalised SHORT rotations are max(c / 32767, -1), and byteStri
     const std::string text = head_gltf(bin, view, accessor);
     std::istringstream in(text);
     gltf_file file = load_gltf(in, format::gltf, "in", ".", default_max_bytes);
-    const std::vector<double> values = read_accessor(file, gltf_json(std::size_t{1}), "rotation", {"VEC4", true});
+    std::vector<double> values{7, 7, 7};  // (what it held before goes)
+    read_accessor(file, gltf_json(std::size_t{1}), "rotation", {"VEC4", true}, values);
     CHECK(values == std::vector<double>{0, 0, 0, 1, 0, -1, 0, 0});
     const document d = read(text, format::gltf);
     REQUIRE(d.tracks.size() == 1);
