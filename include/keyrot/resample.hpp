@@ -116,6 +116,8 @@ private:
     void frames_until(double time, quat q);  // frames at a key time, up to `time` (within tolerance)
     void out(double frame, quat q);
     void rated_out(sample& s);
+    /// Sets s's translation, scale and weights at its time; false while a key they need has not come.
+    bool with_vectors(sample& s, bool end);
     void resolve_vectors(bool end);
 
     resample_options opts_;

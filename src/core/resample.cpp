@@ -200,12 +200,9 @@ void track_resampler::out(double frame, quat q) {
     s.time = frame / opts_.fps;
     s.rotation = q;
     if (rates_) return rated_out(s);
-    if (!vectors_) {
-        emit_(s);
-        return;
-    }
+    // Nothing waiting, and the keys of its translation, scale and weights here: straight out.
+    if (!vectors_ || (pending_.empty() && with_vectors(s, false))) return emit_(s);
     pending_.push_back({s, {}});
-    resolve_vectors(false);
 }
 
 void track_resampler::rated_out(sample& s) {
@@ -213,26 +210,27 @@ void track_resampler::rated_out(sample& s) {
     frame_rates rates;
     if (opts_.velocity) rates.velocity = m.velocity;
     if (opts_.acceleration) rates.acceleration = m.acceleration;
-    if (!vectors_) {
+    if (!vectors_ || (pending_.empty() && with_vectors(s, false))) {
         rates_out_ = rates, s.rates = &rates_out_;
-        emit_(s);
-        return;
+        return emit_(s);
     }
     pending_.push_back({s, rates});
-    resolve_vectors(false);
+}
+
+bool track_resampler::with_vectors(sample& s, bool end) {
+    std::optional<morph_weights> w;
+    if (!translation_.at(s.time, end, s.translation) || !scale_.at(s.time, end, s.scale) ||
+        !weights_.at(s.time, end, w))
+        return false;
+    if (w) s.weights = weights_now_ = std::move(*w);
+    return true;
 }
 
 void track_resampler::resolve_vectors(bool end) {
-    while (!pending_.empty()) {
+    for (; !pending_.empty() && with_vectors(pending_.front().s, end); pending_.pop_front()) {
         sample& s = pending_.front().s;
-        std::optional<morph_weights> w;
-        if (!translation_.at(s.time, end, s.translation) || !scale_.at(s.time, end, s.scale) ||
-            !weights_.at(s.time, end, w))
-            return;
-        if (w) s.weights = weights_now_ = std::move(*w);
         if (rates_) rates_out_ = pending_.front().rates, s.rates = &rates_out_;
         emit_(s);
-        pending_.pop_front();
     }
 }
 

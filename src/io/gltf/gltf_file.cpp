@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <bit>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -20,6 +21,11 @@ namespace {
 
 /// Little-endian unsigned integer of `bytes` bytes at `p`.
 std::uint32_t little_endian(const char* p, int bytes) {
+    if (bytes == 4 && std::endian::native == std::endian::little) {  // (every FLOAT: one load)
+        std::uint32_t v;
+        std::memcpy(&v, p, 4);
+        return v;
+    }
     std::uint32_t v = 0;
     for (int i = bytes - 1; i >= 0; --i) v = v << 8 | static_cast<unsigned char>(p[i]);
     return v;
