@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 
 #include "ground/text.hpp"
@@ -66,6 +67,28 @@ void byte_spool::each_block(const std::function<void(std::string_view)>& f) {
         f(read);
     }
     if (!block_.empty()) f(block_);
+}
+
+void byte_spool::read(std::size_t offset, std::size_t n, std::string& out) const {
+    const std::size_t in_file = size_ - block_.size();
+    out.resize(n);
+    const std::size_t from_file = offset < in_file ? std::min(n, in_file - offset) : 0;
+    if (from_file > 0 && !whole(::pread, ::fileno(file_), out.data(), from_file, static_cast<off_t>(offset)))
+        throw error(fmt::format("cannot read back a temporary file: {}", errno_text()));
+    if (from_file < n) block_.copy(out.data() + from_file, n - from_file, offset + from_file - in_file);
+}
+
+bool byte_spool::holds_at(std::size_t offset, byte_spool& other) {
+    if (offset > size_ || other.size() > size_ - offset) return false;
+    bool same = true;
+    std::string mine;
+    other.each_block([&](std::string_view block) {
+        if (!same) return;
+        read(offset, block.size(), mine);
+        same = mine == block;
+        offset += block.size();
+    });
+    return same;
 }
 
 }  // namespace keyrot

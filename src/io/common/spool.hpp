@@ -33,9 +33,13 @@ public:
     void clear() noexcept { size_ = 0, block_.clear(); }
     /// Calls `f` with the bytes, in order, a block at a time.
     void each_block(const std::function<void(std::string_view)>& f);
+    /// Whether the bytes from `offset` on begin with those of `other`.
+    bool holds_at(std::size_t offset, byte_spool& other);
 
 private:
     void flush();
+    /// `n` bytes from `offset` (within size()) into `out`.
+    void read(std::size_t offset, std::size_t n, std::string& out) const;
 
     std::FILE* file_;
     std::string block_;      // the bytes after the file's: all of them without a file

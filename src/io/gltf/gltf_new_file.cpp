@@ -8,6 +8,7 @@
 #include <bit>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include "io/gltf/gltf_buffer.hpp"
@@ -145,7 +146,7 @@ private:
                                                   std::tuple(&translation_, "translation", 3, t.how.translation),
                                                   std::tuple(&scale_, "scale", 3, t.how.scale)}) {
             if (c->count == 0) continue;
-            const auto times = [&, c = c] { return b_.accessor(b_.view(c->times), c->count, 1, {c->first}, {c->last}); };
+            const auto times = [&, c = c] { return time_accessor(*c); };
             const bool one_key = c != &rotation_ && c->count == rotation_.count && c->count > 1 && c->still;
             std::size_t input;
             if (one_key) input = single_time(c->first);
@@ -159,6 +160,18 @@ private:
             samplers_.push_back(std::move(sampler));
             t.samplers.emplace_back(path, samplers_.size() - 1);
         }
+    }
+    /// The accessor of channel c's key times: the one written last where
+    /// they are its bytes (a rig's joints have the same frames), else a new one.
+    std::size_t time_accessor(spooled_channel& c) {
+        if (last_times_ && last_times_->count == c.count && last_times_->first == c.first &&
+            last_times_->last == c.last && b_.bin.holds_at(last_times_->offset, c.times))
+            return last_times_->accessor;
+        const std::size_t view = b_.view(c.times);
+        last_times_ = written_times{b_.accessor(view, c.count, 1, {c.first}, {c.last}),
+                                    json_["bufferViews"][view]["byteOffset"].get<std::size_t>(), c.count, c.first,
+                                    c.last};
+        return last_times_->accessor;
     }
     /// The accessor of the one key time `time`, shared by the tracks whose first key it is.
     std::size_t single_time(float time) {
@@ -182,6 +195,12 @@ private:
     std::vector<written_track> tracks_;
     spooled_channel rotation_, translation_, scale_;
     std::map<std::uint32_t, std::size_t> single_times_;  // single_time's, by the time's bits
+    struct written_times {
+        std::size_t accessor, offset;  // the accessor, and where its bytes are in the buffer
+        std::size_t count;
+        float first, last;
+    };
+    std::optional<written_times> last_times_;  // time_accessor's last new one
     double previous_time_ = 0;
 };
 

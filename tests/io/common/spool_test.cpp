@@ -3,7 +3,10 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <memory>
 #include <string>
+#include <string_view>
 
 using namespace keyrot;
 
@@ -38,4 +41,26 @@ TEST_CASE("byte_spool: cleared, it takes new bytes over the old") {
     CHECK(read_back(s).empty());
     s.append("bc");
     CHECK(read_back(s) == "bc");
+}
+
+TEST_CASE("byte_spool: holds_at compares a range, in the file or in memory or across both, with another spool") {
+    byte_spool big;
+    std::string bytes;
+    for (int i = 0; i < 40000; ++i) bytes += std::to_string(i * 31) + ';';  // about 230 KB: file and memory
+    big.append(bytes);
+    const auto spool_of = [](std::string_view text) {
+        auto s = std::make_unique<byte_spool>();
+        s->append(text);
+        return s;
+    };
+    for (const std::size_t at : {std::size_t{0}, std::size_t{65530}, std::size_t{100000}, bytes.size() - 9}) {
+        CAPTURE(at);
+        const std::size_t n = std::min<std::size_t>(90000, bytes.size() - at);
+        CHECK(big.holds_at(at, *spool_of(std::string_view(bytes).substr(at, n))));
+        std::string changed = bytes.substr(at, n);
+        changed.back() ^= 1;
+        CHECK_FALSE(big.holds_at(at, *spool_of(changed)));
+    }
+    CHECK_FALSE(big.holds_at(bytes.size() - 3, *spool_of(bytes.substr(bytes.size() - 3) + "x")));  // past the end
+    CHECK(big.holds_at(bytes.size(), *spool_of("")));
 }
