@@ -168,6 +168,13 @@ done
 # any format ends in one line and a small peak (measured from outside).
 expect_error "/dev/zero as CSV, by default" "keyrot: /dev/zero:1: line longer than 1048576 bytes: expected the lines of a keyframe table (--max-bytes N raises the limit)" -- \
     timeout 60 "$keyrot" resample /dev/zero
+# A JSON document broken in its first block is said to be at once, not after
+# reading on to the limit (random bytes that happen to begin with '{').
+{ printf '{'; head -c 70000000 /dev/urandom; } > brace_junk.json
+expect "'{' and 70 MB of random bytes as JSON: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \
+    "read status kb < <(python3 '$tests/peak.py' '$keyrot' resample brace_junk.json 2>/dev/null)
+     echo \$status \$( ((kb < 65536)) && echo small || echo \$kb KB)"
+rm -f brace_junk.json
 for source in /dev/zero /dev/urandom; do
     for from in csv ndjson json gltf glb bvh; do
         expect "$source as $from: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \

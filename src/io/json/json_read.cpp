@@ -212,17 +212,36 @@ bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink, warn
 
 }  // namespace
 
+namespace {
+
+/// Whether `text`, the start of a document, has a syntax error before its
+/// end (which no more text could mend).
+bool broken_before_end(std::string_view text) {
+    try {
+        [[maybe_unused]] const json parsed = json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& e) {
+        return e.byte < text.size();
+    } catch (const json::exception&) {  // (a number beyond a double: said when the whole document is read)
+    }
+    return false;
+}
+
+}  // namespace
+
 bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, warnings& warn) {
     std::string text;
     text.reserve(static_cast<std::size_t>(std::max<std::streamsize>(0, in.rdbuf()->in_avail())));
     std::array<char, std::size_t{1} << 16> chunk;
     while (const auto got = in.rdbuf()->sgetn(chunk.data(), chunk.size())) {
         if (text.empty()) {
-            // Not JSON from its first character (random bytes, /dev/zero): said
-            // now, from the first block, rather than after reading all there is.
+            // Not JSON from its first character or within its first block
+            // (random bytes, /dev/zero): said now, as reading it all would
+            // say it, rather than after reading all there is.
             const std::string_view start = without_bom(std::string_view(chunk.data(), static_cast<std::size_t>(got)));
             const auto first = start.find_first_not_of(" \t\r\n");
-            if (first != std::string_view::npos && start[first] != '{' && start[first] != '[') parse_json_text(start, opts.source, 1);
+            if (first != std::string_view::npos &&
+                ((start[first] != '{' && start[first] != '[') || broken_before_end(start)))
+                parse_json_text(start, opts.source, 1);
         }
         if (text.size() + static_cast<std::size_t>(got) > opts.max_bytes)
             throw input_error(opts.source, fmt::format("JSON document longer than {} bytes (--max-bytes N raises the limit)",
