@@ -104,6 +104,12 @@ void print_help_topic(const CLI::App& app, std::span<CLI::App* const> subs, int 
 }  // namespace
 
 std::optional<options> parse_command_line(int argc, const char* const* argv, std::ostream& out) {
+    if (argc == 2 && std::string_view(argv[1]) == "--version") {
+        // Before CLI11, which says it by throwing: a static binary's first
+        // exception sorts the unwind tables, a millisecond.
+        out << "keyrot " << version << '\n';
+        return std::nullopt;
+    }
     CLI::App app{"keyrot: keyframe rotation interpolator", "keyrot"};
     app.set_version_flag("--version", version);
     app.require_subcommand(1);

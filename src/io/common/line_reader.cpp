@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cstring>
 
 #include "keyrot/error.hpp"
@@ -11,22 +10,26 @@
 namespace keyrot {
 
 line_reader::line_reader(std::istream& in, std::size_t max_line, std::string source)
-    : in_(in), max_line_(max_line), source_(std::move(source)), buf_(std::size_t{1} << 16, '\0') {}
+    : in_(in), max_line_(max_line), source_(std::move(source)), buf_(std::make_unique_for_overwrite<char[]>(size_)) {}
 
 bool line_reader::fill() {
     if (at_end_) return false;
     if (begin_ > 0) {  // keep the unread part at the front
-        buf_.erase(0, begin_);
+        std::memmove(buf_.get(), buf_.get() + begin_, end_ - begin_);
         end_ -= begin_;
         begin_ = 0;
-        buf_.resize(std::max(buf_.size(), std::size_t{1} << 16));
     }
-    if (end_ == buf_.size()) buf_.resize(buf_.size() * 2);  // a line longer than the buffer
-    in_.read(buf_.data() + end_, static_cast<std::streamsize>(buf_.size() - end_));
+    if (end_ == size_) {  // a line longer than the buffer
+        auto larger = std::make_unique_for_overwrite<char[]>(size_ * 2);
+        std::memcpy(larger.get(), buf_.get(), end_);
+        buf_ = std::move(larger);
+        size_ *= 2;
+    }
+    in_.read(buf_.get() + end_, static_cast<std::streamsize>(size_ - end_));
     const auto got = static_cast<std::size_t>(in_.gcount());
     end_ += got;
     if (at_start_ && end_ >= 3) {
-        if (buf_.compare(0, 3, "\xEF\xBB\xBF") == 0) begin_ = 3;
+        if (std::string_view(buf_.get(), 3) == "\xEF\xBB\xBF") begin_ = 3;
         at_start_ = false;
     }
     if (got == 0) at_end_ = true;
@@ -47,7 +50,7 @@ bool line_reader::next(std::string_view& line) {
 bool line_reader::read(std::string_view& line) {
     std::size_t searched = begin_;
     for (;;) {
-        const auto* data = buf_.data();
+        const char* data = buf_.get();
         const void* nl = std::memchr(data + searched, '\n', end_ - searched);
         if (nl) {
             const auto eol = static_cast<std::size_t>(static_cast<const char*>(nl) - data);
@@ -63,7 +66,7 @@ bool line_reader::read(std::string_view& line) {
                                           max_line_));
         if (!fill()) {
             if (begin_ == end_) return false;
-            line = std::string_view(buf_.data() + begin_, end_ - begin_);  // no final newline
+            line = std::string_view(buf_.get() + begin_, end_ - begin_);  // no final newline
             begin_ = end_;
             break;
         }

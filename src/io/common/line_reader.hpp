@@ -2,6 +2,7 @@
 // Lines of a stream, for the line-based readers.
 #include <cstddef>
 #include <istream>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -33,7 +34,8 @@ private:
     std::istream& in_;
     std::size_t max_line_;
     std::string source_;
-    std::string buf_;
+    std::size_t size_ = std::size_t{1} << 16;
+    std::unique_ptr<char[]> buf_;      // of size_ bytes, not zeroed: only what was read is read
     std::size_t begin_ = 0, end_ = 0;  // unread bytes in buf_
     std::size_t number_ = 0;
     bool at_start_ = true, at_end_ = false, crlf_ = false;

@@ -75,9 +75,9 @@ public:
         for (block* b = &first_;; b = next_of(*b), first += block_slots) {
             for (std::size_t i = 0; i < block_slots; ++i) {
                 int free = 0;
-                if (!b->slots[i].state.compare_exchange_strong(free, 1)) continue;
-                std::memcpy(b->slots[i].path, path.c_str(), path.size() + 1);
-                b->slots[i].state = 2;
+                if (!b->states[i].compare_exchange_strong(free, 1)) continue;
+                std::memcpy(b->paths[i].data(), path.c_str(), path.size() + 1);
+                b->states[i] = 2;
                 return first + i;
             }
         }
@@ -85,7 +85,7 @@ public:
     void remove(std::size_t at) {
         block* b = &first_;
         for (; at >= block_slots; at -= block_slots) b = b->next.load();
-        b->slots[at].state = 0;
+        b->states[at] = 0;
     }
 
 private:
@@ -101,18 +101,18 @@ private:
     }
     static void on_signal(int sig) {
         for (const block* b = &instance().first_; b; b = b->next.load())
-            for (const auto& taken : b->slots)
-                if (taken.state == 2) ::unlink(taken.path);
+            for (std::size_t i = 0; i < block_slots; ++i)
+                if (b->states[i] == 2) ::unlink(b->paths[i].data());
         ::signal(sig, SIG_DFL);
         ::raise(sig);
     }
     static constexpr std::size_t block_slots = 64;
-    struct path_slot {
-        std::atomic<int> state{0};  // 0 free, 1 being filled, 2 holds a path
-        char path[PATH_MAX];
-    };
+    // The states side by side and the paths apart: setting up the registry
+    // then touches one page, not one a slot (a page fault each, at every
+    // start-up that writes a file).
     struct block {
-        std::array<path_slot, block_slots> slots;
+        std::array<std::atomic<int>, block_slots> states{};  // 0 free, 1 being filled, 2 holds a path
+        std::array<std::array<char, PATH_MAX>, block_slots> paths;
         std::atomic<block*> next{nullptr};
     };
     /// The block after `b`, added if there is none yet.
