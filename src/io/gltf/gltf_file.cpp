@@ -139,7 +139,7 @@ std::string_view buffer_bytes(gltf_file& file, std::size_t i) {
     if (!b.contains("uri")) {
         if (i != 0 || !file.bin)
             throw input_error(at, "no uri, and the file has no GLB BIN chunk: expected one of them");
-        const std::string_view chunk = std::string_view(file.glb).substr(file.bin->first, file.bin->second);
+        const std::string_view chunk = file.glb.view().substr(file.bin->first, file.bin->second);
         if (chunk.size() < length)
             throw input_error(at, fmt::format("holds {} bytes: expected byteLength {}", chunk.size(), length));
         return chunk;  // where it is
@@ -312,7 +312,7 @@ std::size_t index_into(const gltf_file& file, const gltf_json& value, const char
 gltf_file load_gltf(std::istream& in, format f, const std::string& source, const std::string& directory,
                     std::size_t max_bytes) {
     gltf_file file{source, directory, max_bytes, {}, {}, std::nullopt, {}};
-    std::string bytes;
+    byte_block bytes;
     // In one piece where the stream knows its size (a file; keyrot's own
     // input streams say what is left), then, where it could not seek, a
     // piece at a time to its end.
@@ -323,26 +323,21 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
     in.seekg(0);
     in.clear();
     if (!seekable) size = in.rdbuf()->in_avail();
-    if (size > 0) {
-        bytes.resize(std::min(static_cast<std::size_t>(size), max_bytes + 1));
-        in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-        bytes.resize(static_cast<std::size_t>(in.gcount()));
-    }
+    if (size > 0) bytes.read(in, std::min(static_cast<std::size_t>(size), max_bytes + 1));
     // Input that cannot begin a glTF file (/dev/zero, say) is not read on
     // to the limit: what came is parsed, which says what is wrong.
     if (!seekable)
-        for (char chunk[1 << 16]; bytes.size() <= max_bytes && could_begin_gltf(bytes, f) &&
-                                  (in.read(chunk, sizeof chunk) || in.gcount() > 0);)
-            bytes.append(chunk, static_cast<std::size_t>(in.gcount()));
+        while (bytes.size() <= max_bytes && could_begin_gltf(bytes.view(), f) && bytes.read(in, std::size_t{1} << 16)) {
+        }
     if (bytes.size() > max_bytes)
         throw input_error(
             source,
             fmt::format("more than {} bytes: expected a smaller file (--max-bytes N raises the limit)", max_bytes));
-    std::string_view json = bytes;
+    std::string_view json = bytes.view();
     if (f == format::glb) {
-        const auto [text, bin] = glb_chunks(bytes, source);
+        const auto [text, bin] = glb_chunks(json, source);
+        if (bin) file.bin = std::pair(static_cast<std::size_t>(bin->data() - json.data()), bin->size());
         json = text;
-        if (bin) file.bin = std::pair(static_cast<std::size_t>(bin->data() - bytes.data()), bin->size());
     }
     file.json = parse_json_text(json, source);
     check_header(file.json, source);

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "io/common/byte_block.hpp"
 #include "io/common/format.hpp"
 
 namespace keyrot {
@@ -21,7 +22,7 @@ struct gltf_file {
     std::string directory;  ///< where relative buffer URIs point: the file's, "." for standard input
     std::size_t max_bytes = default_max_bytes;  ///< the most a buffer file may hold
     gltf_json json;
-    std::string glb;                                         ///< a .glb as read, its BIN chunk in place
+    byte_block glb;                                          ///< a .glb as read, its BIN chunk in place
     std::optional<std::pair<std::size_t, std::size_t>> bin;  ///< the BIN chunk's offset and size in `glb`
     std::vector<std::optional<std::string>> buffers;         ///< the others' bytes, each as it is first read
 };
