@@ -68,6 +68,9 @@ void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
     auto* rad = sub.add_flag("--out-radians", f.out_radians, "output angles in radians");
     deg->excludes(rad);
     sub.add_option("--precision", f.precision, "digits after the decimal point (default: shortest round trip)");
+    sub.add_flag("--compact", o.compact,
+                 "glTF output: rotations as normalised 16-bit integers, half the bytes, each within 0.0035 deg of "
+                 "exact (default: 32-bit floats)");
     sub.add_flag("--euler-continuous", o.euler_continuous,
                  "Euler output continuous from frame to frame (always for BVH), not in canonical ranges");
     sub.add_option("--settings-line", f.settings_line,

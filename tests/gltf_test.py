@@ -642,6 +642,92 @@ def check_step_output(case, work, written):
     checks += 1
 
 
+COMPACT_DEG = 0.0035  # 2 asin(2 * 0.5 / 32767) in degrees, with room for the float times
+
+
+def short_rotations(doc, binary):
+    """Each LINEAR or STEP rotation channel's (node, key times, quaternions x y z w as stored
+    integers); a rotation channel stored otherwise is reported as a failure."""
+    out = []
+    anim = doc["animations"][0]
+    for c in anim["channels"]:
+        sampler = anim["samplers"][c["sampler"]]
+        if c["target"]["path"] != "rotation" or sampler.get("interpolation") == "CUBICSPLINE":
+            continue
+        a = doc["accessors"][sampler["output"]]
+        if a["componentType"] != 5122 or a.get("normalized") is not True:
+            fail(f"--compact: rotation accessor {sampler['output']}: {a}, expected normalised SHORT (5122)")
+            continue
+        _, elements = accessor_content(doc, binary, sampler["output"])
+        _, times = accessor_content(doc, binary, sampler["input"])
+        out.append((c["target"]["node"], struct.unpack(f"<{a['count']}f", times),
+                    np.array(struct.unpack(f"<{4 * a['count']}h", elements)).reshape(-1, 4)))
+    return out
+
+
+def check_compact(cases, work, written):
+    """--compact: LINEAR and STEP rotations as normalised SHORTs, round(q * 32767) of the exact
+    quaternion; translations, scales and CUBICSPLINE samplers as before; every row within
+    COMPACT_DEG of exact, which compare checks; other outputs refuse the flag."""
+    global checks
+    data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
+    rig = next(c for c in cases if c.name == "rig.glb")
+    jobs = [(os.path.join(data, "walk.csv"), "walk_compact.glb", ["resample"]),
+            (os.path.join(data, "walk.csv"), "walk_compact.gltf", ["resample"]),
+            (rig.path, "rig_compact.glb", ["resample", "--fps", "60"]),
+            (cases[2].path, "cubic_compact.glb", ["convert"])]
+    for source, name, command in jobs:
+        out = os.path.join(work, name)
+        status, _, err = run(command + [source, "--compact", "-o", out])
+        if status != 0:
+            fail(f"{out}: {err.strip()}")
+            continue
+        written.append(out)
+        doc, binary = G.parts(out)
+        _, direct, _ = run(command + [source, "--to", "csv", "--rep", "quat"])
+        if "track," not in direct:  # (walk.csv's one track, unnamed: its node is "track")
+            direct = "\n".join(line if line.startswith(("#", "frame")) or not line else "track," + line
+                               for line in direct.split("\n")).replace("frame,", "track,frame,", 1)
+        rows = frames_by_key(direct)
+        # The integers stored are round(q * 32767) of the quaternion written as exact doubles.
+        stored = short_rotations(doc, binary)
+        for node, times, shorts in stored:
+            track = doc["nodes"][node].get("name", "track")
+            for t, got in zip(times, shorts):
+                r = rows[(track, round(t * 1200))]
+                want = [round(float(r[k]) * 32767) for k in ("qx", "qy", "qz", "qw")]
+                if list(got) != want:
+                    fail(f"{out}: {track} at {t} s: stored {list(got)}, expected round(q * 32767) = {want}")
+                    break
+        floats = [doc["accessors"][a["output"]]["componentType"] for a in doc["animations"][0]["samplers"]
+                  if doc["accessors"][a["output"]]["componentType"] != 5122]
+        cubic = [s for s in doc["animations"][0]["samplers"] if s.get("interpolation") == "CUBICSPLINE"]
+        if any(t != 5126 for t in floats) or (name.startswith("cubic") and not cubic):
+            fail(f"{out}: other samplers' outputs {set(floats)}, CUBICSPLINE ones {len(cubic)}: expected FLOAT")
+        # Read back, each row within the bound, and some rows near it: the bound is what compare can check.
+        _, back, _ = run(["convert", out, "--to", "csv", "--rep", "quat"])
+        if not compare_frames(f"{out} read back", direct, back, COMPACT_DEG):
+            continue
+        reference = os.path.join(work, name + ".csv")
+        with open(reference, "w") as f:
+            f.write(direct)
+        status, _, _ = run(["compare", reference, out, "--tol", str(COMPACT_DEG)])
+        tight, _, _ = run(["compare", reference, out, "--tol", "0.0005"])
+        if status != 0 or (stored and tight != 1):
+            fail(f"{out}: compare --tol {COMPACT_DEG} exit {status} (expected 0), --tol 0.0005 exit {tight} "
+                 f"(expected 1: the integers are coarser)")
+            continue
+        checks += 1
+        print(f"ok: {out}: {len(stored)} rotation channels as normalised SHORTs, within {COMPACT_DEG} deg")
+    for target in ("x.csv", "x.bvh"):
+        out = os.path.join(work, target)
+        status, text, err = run(["resample", os.path.join(data, "walk.csv"), "--compact", "-o", out])
+        if status != 2 or text or len(err.splitlines()) != 1 or "--compact" not in err or os.path.exists(out):
+            fail(f"--compact -o {target}: status {status}, {err.strip()!r}: expected one line, exit 2, no file")
+        else:
+            checks += 1
+
+
 def validate(files):
     global checks
     if not VALIDATOR:
@@ -792,6 +878,7 @@ def main():
         check_step_output(cases[0], work, written)
         check_new_files(work, written)
         check_new_file_still_channels(work, written)
+        check_compact(cases, work, written)
         validate(written)
         check_bad(work)
     print(f"gltf_test: {checks} checks, {len(failures)} failures")

@@ -39,6 +39,7 @@ struct options {
     settings_line settings_when = settings_line::needed;  ///< --settings-line
     bool strict = false;
     bool fsync = false;  ///< --fsync: outputs durable against a power cut
+    bool compact = false;  ///< --compact: a glTF output's rotations as normalised 16-bit integers
     double fps = 24;
     std::optional<double> key_fps;  ///< none: the file's, else default_key_fps (not fps)
     std::optional<method> how;  ///< --method; by default a glTF sampler's own, else slerp

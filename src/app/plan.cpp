@@ -1,5 +1,8 @@
 #include "app/plan.hpp"
 
+#include <fmt/format.h>
+
+#include "app/usage_error.hpp"
 #include "io/common/output.hpp"
 
 namespace keyrot::detail {
@@ -38,6 +41,7 @@ write_options writing(const options& o, const std::optional<euler_seq>& input_eu
     w.order = o.order;
     w.precision = o.precision;
     w.euler_continuous = o.euler_continuous;
+    w.compact_rotations = o.compact;
     w.states = o.settings_when;
     w.commit.fsync = o.fsync;
     if (w.representation == rep::euler) {
@@ -45,6 +49,13 @@ write_options writing(const options& o, const std::optional<euler_seq>& input_eu
         if (!w.euler) throw usage_error("--rep euler needs an Euler sequence: expected --out-euler SEQ or --euler SEQ");
     }
     return w;
+}
+
+void check_output_format(const options& o, format out) {
+    if (o.compact && !is_gltf(out))
+        throw usage_error(fmt::format("--compact stores glTF rotations as 16-bit integers, and {} has no such "
+                                      "storage: expected --to gltf or glb, or -o with one of their extensions",
+                                      to_string(out)));
 }
 
 resample_options resampling(const options& o) {

@@ -20,7 +20,7 @@ _keyrot() {
 
     local input="--from --strict --key-fps --max-bytes --animation"
     local conventions="--euler --quat-order --radians"
-    local output="-o --output --fsync --to --rep --out-euler --out-degrees --out-radians --precision --euler-continuous --settings-line $conventions"
+    local output="-o --output --fsync --to --rep --out-euler --out-degrees --out-radians --precision --compact --euler-continuous --settings-line $conventions"
     local interpolation="--method --path"
     local flags
     case $command in

@@ -91,7 +91,7 @@ std::unique_ptr<table_output> open_table(format f, const std::optional<std::stri
         std::vector<gltf_node> skeleton;
         if (opts.bvh)
             for (const bvh_node& n : opts.bvh->nodes) skeleton.push_back({n.name, n.parent, n.offset, n.joint});
-        return make_gltf_table(f, path, out, opts.commit, opts.gltf, std::move(skeleton), warn);
+        return make_gltf_table(f, path, out, opts.commit, opts.compact_rotations, opts.gltf, std::move(skeleton), warn);
     }
     if (f == format::bvh) {
         if (!opts.bvh)

@@ -7,7 +7,8 @@ resampled to 30 fps, glb to glb, by `keyrot resample rig.glb --fps 30 -o
 out.glb` and by `gltfpack -i rig.glb -o out.glb -af 30 -noq` (Debian's
 gltfpack; -noq keeps 32-bit floats, as keyrot does), taking turns run by
 run. Prints the medians of wall time and peak RSS, the output sizes, and
-the ratio; with --baseline, another keyrot takes turns too.
+the ratio; keyrot --compact (16-bit rotations, as gltfpack's) beside them;
+with --baseline, another keyrot takes turns too.
 """
 import argparse
 import json
@@ -88,7 +89,9 @@ def main():
     with tempfile.TemporaryDirectory() as work:
         src = os.path.join(work, "rig.glb")
         subprocess.run([sys.executable, os.path.abspath(__file__), args.keyrot, "--rig", src], check=True)
-        jobs = [("keyrot", [args.keyrot, "resample", src, "--fps", "30", "-o", os.path.join(work, "keyrot.glb")])]
+        jobs = [("keyrot", [args.keyrot, "resample", src, "--fps", "30", "-o", os.path.join(work, "keyrot.glb")]),
+                ("keyrot --compact", [args.keyrot, "resample", src, "--fps", "30", "--compact", "-o",
+                                      os.path.join(work, "compact.glb")])]
         if args.baseline:
             jobs.append(("baseline keyrot", [args.baseline, "resample", src, "--fps", "30", "-o",
                                              os.path.join(work, "baseline.glb")]))
@@ -112,6 +115,8 @@ def main():
         print(f"gltfpack's output were its rotations 32-bit floats: {float32_size(gltfpack_out) / 1e6:.2f} MB")
         print(f"keyrot / gltfpack: {medians['keyrot'] / medians['gltfpack -af 30 -noq']:.2f} the time, "
               f"{os.path.getsize(jobs[0][1][-1]) / float32_size(gltfpack_out):.3f} the size at 32-bit floats")
+        print(f"keyrot --compact / gltfpack: {medians['keyrot --compact'] / medians['gltfpack -af 30 -noq']:.2f} "
+              f"the time, {os.path.getsize(jobs[1][1][-1]) / os.path.getsize(gltfpack_out):.3f} the size")
 
 
 if __name__ == "__main__":

@@ -58,6 +58,8 @@ struct write_options {
     std::shared_ptr<bvh_source> bvh = nullptr;
     /// Euler output: each row's angles nearest the row's before (continuous_euler).
     bool euler_continuous = false;
+    /// glTF output: LINEAR and STEP rotations as normalised 16-bit integers (--compact).
+    bool compact_rotations = false;
     settings_line states = settings_line::needed;
     /// How an output file is put in place (--fsync).
     commit_mode commit;

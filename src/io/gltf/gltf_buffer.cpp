@@ -33,6 +33,12 @@ void append_float(std::string& out, float v) {
     for (std::size_t b = 0; b < 4; ++b) out += static_cast<char>(raw >> (8 * b) & 0xff);
 }
 
+void append_normalized_short(std::string& out, double v) {
+    const auto s = static_cast<std::uint16_t>(static_cast<std::int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * 32767)));
+    out += static_cast<char>(s & 0xff);
+    out += static_cast<char>(s >> 8);
+}
+
 float single(double v, const std::string& where, const char* what) {
     const auto f = static_cast<float>(v);
     if (!std::isfinite(f))
@@ -66,11 +72,21 @@ std::size_t buffer_builder::accessor(const std::vector<float>& values, std::size
         for (std::size_t i = 0; i < values.size(); ++i)
             lo[i % width] = std::min(lo[i % width], values[i]), hi[i % width] = std::max(hi[i % width], values[i]);
     }
-    if (!shared_) return accessor(view(data), values.size() / width, width, lo, hi);
+    return placed(data, values.size() / width, width, lo, hi, component::float32);
+}
+
+std::size_t buffer_builder::accessor(std::string_view data, std::size_t count, std::size_t width, component c) {
+    return placed(data, count, width, {}, {}, c);
+}
+
+std::size_t buffer_builder::placed(std::string_view data, std::size_t count, std::size_t width,
+                                   const std::vector<float>& lo, const std::vector<float>& hi, component c) {
+    if (!shared_) return accessor(view(data), count, width, lo, hi, c);
     if (!shared_->index) shared_->index = begin_view(0, 0), shared_->start = bin.size();
     const std::size_t offset = bin.size() - shared_->start;
-    bin.append(data);  // (floats: the next accessor's offset stays a multiple of 4)
-    const std::size_t a = accessor(*shared_->index, values.size() / width, width, lo, hi);
+    // (floats, and shorts four to an element: the next accessor's offset stays a multiple of 4)
+    bin.append(data);
+    const std::size_t a = accessor(*shared_->index, count, width, lo, hi, c);
     if (offset != 0) json_["accessors"][a]["byteOffset"] = offset;
     return a;
 }
@@ -81,10 +97,11 @@ void buffer_builder::end_shared_view() {
 }
 
 std::size_t buffer_builder::accessor(std::size_t view, std::size_t count, std::size_t width,
-                                     const std::vector<float>& lo, const std::vector<float>& hi) {
+                                     const std::vector<float>& lo, const std::vector<float>& hi, component c) {
     gltf_json a = gltf_json::object();
     a["bufferView"] = view;
-    a["componentType"] = 5126;
+    a["componentType"] = c == component::float32 ? 5126 : 5122;
+    if (c == component::normalized_short) a["normalized"] = true;
     a["count"] = count;
     a["type"] = width == 1 ? "SCALAR" : width == 3 ? "VEC3" : "VEC4";
     if (!lo.empty()) a["min"] = lo, a["max"] = hi;

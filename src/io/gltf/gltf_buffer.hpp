@@ -1,8 +1,9 @@
 #pragma once
 // What both glTF writers share (the one that rewrites a glTF input, the one
 // that makes a new file): the output's buffer with its bufferViews and
-// accessors, 32-bit floats, and the file written at the end (a .glb, a
-// .gltf with its .bin, or a .gltf with its buffer as a data: URI).
+// accessors, 32-bit floats (and normalised 16-bit integers), and the file
+// written at the end (a .glb, a .gltf with its .bin, or a .gltf with its
+// buffer as a data: URI).
 #include <cmath>
 #include <optional>
 #include <ostream>
@@ -20,6 +21,15 @@ namespace keyrot::detail {
 
 /// `v` as glTF stores a FLOAT: 4 bytes, little-endian, appended to `out`.
 void append_float(std::string& out, float v);
+
+/// How an accessor's components are stored.
+enum class component { float32, normalized_short };
+
+/// `v` in [-1, 1] as glTF stores a normalised SHORT, round(v × 32767): 2
+/// bytes, little-endian, appended to `out`. Off by at most 0.5 / 32767; a
+/// unit quaternion so stored is within 4 × 0.5 / 32767 radians (0.0035°)
+/// of its rotation, whatever its length then.
+void append_normalized_short(std::string& out, double v);
 
 /// `v` as a 32-bit float; an input_error at `where` ("walk.csv: track 'hip'") where it is too large for one.
 float single(double v, const std::string& where, const char* what);
@@ -49,15 +59,18 @@ public:
     /// A FLOAT accessor of `values` (`width` per element), with min and max
     /// when `bounds`: in a bufferView of its own, or in the shared one.
     std::size_t accessor(const std::vector<float>& values, std::size_t width, bool bounds);
+    /// An accessor of `count` elements of `width` components `c`, stored as
+    /// `data` holds them: in a bufferView of its own, or in the shared one.
+    std::size_t accessor(std::string_view data, std::size_t count, std::size_t width, component c);
     /// Until end_shared_view(), the accessors of values share one bufferView
     /// (nothing else may be added to the buffer meanwhile): a view each
     /// costs more JSON than a key's worth of data.
     void begin_shared_view() { shared_ = shared_view{}; }
     void end_shared_view();
-    /// A FLOAT accessor of `count` elements of `width` in bufferView `view`,
-    /// with the bounds `lo` and `hi` where they are given.
+    /// An accessor of `count` elements of `width` components `c` in
+    /// bufferView `view`, with the bounds `lo` and `hi` where they are given.
     std::size_t accessor(std::size_t view, std::size_t count, std::size_t width, const std::vector<float>& lo,
-                         const std::vector<float>& hi);
+                         const std::vector<float>& hi, component c = component::float32);
 
 private:
     struct shared_view {
@@ -65,6 +78,8 @@ private:
         std::size_t start = 0;
     };
     std::size_t begin_view(std::size_t length, std::size_t remainder);
+    std::size_t placed(std::string_view data, std::size_t count, std::size_t width, const std::vector<float>& lo,
+                       const std::vector<float>& hi, component c);
     std::optional<shared_view> shared_;
     std::size_t append(const char* name, gltf_json value);
     gltf_json& json_;

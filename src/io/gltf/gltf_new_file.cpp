@@ -30,16 +30,19 @@ gltf_json channel_json(std::size_t sampler, std::size_t node, const char* path) 
 }
 
 /// A new file (a node per track, or the nodes of a skeleton, and one
-/// animation) written as the rows come: each channel's 32-bit floats are
-/// set aside in a temporary file, and a track's are appended to the buffer
+/// animation) written as the rows come: each channel's 32-bit floats (with
+/// `short_rotations`, the rotation's normalised 16-bit integers) are set
+/// aside in a temporary file, and a track's are appended to the buffer
 /// when it ends, so that memory does not grow with the take. A row is
 /// LINEAR or STEP, never CUBICSPLINE (only a glTF input has splines).
 class new_file_table final : public table_output {
 public:
     new_file_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
-                   std::vector<gltf_node> skeleton, warnings& warn)
+                   bool short_rotations, std::vector<gltf_node> skeleton, warnings& warn)
         : f_(f), target_(target), commit_(commit), out_(out), skeleton_(std::move(skeleton)),
-          b_(json_, warn.source()) {}
+          b_(json_, warn.source()) {
+        if (short_rotations) rotation_.stored = component::normalized_short;
+    }
     void begin_track(const std::string& name, channels carried, const track_interpolation& written) override {
         end_track();
         if (carried.weights)
@@ -106,10 +109,12 @@ public:
     }
 
 private:
-    /// A channel of the current track: its key times and values as 32-bit
-    /// floats, set aside; its first value, and whether every one is that.
+    /// A channel of the current track: its key times as 32-bit floats and
+    /// its values as `stored`, set aside; its first value, and whether
+    /// every one is that.
     struct spooled_channel {
         byte_spool times, values;
+        component stored = component::float32;
         std::size_t count = 0;
         float first = 0, last = 0;
         std::string first_value;
@@ -120,7 +125,9 @@ private:
             append_float(bytes, time);
             times.append(bytes);
             bytes.clear();
-            for (const double v : value) append_float(bytes, single_at(v, where, what));
+            for (const double v : value)
+                if (stored == component::float32) append_float(bytes, single_at(v, where, what));
+                else append_normalized_short(bytes, v);
             values.append(bytes);
             if (count++ == 0) first = time, first_value = bytes;
             else still = still && bytes == first_value;
@@ -156,7 +163,8 @@ private:
             gltf_json sampler = gltf_json::object();
             sampler["input"] = input;
             sampler["interpolation"] = interpolation_name(how);
-            sampler["output"] = b_.accessor(values, one_key ? 1 : c->count, static_cast<std::size_t>(width), {}, {});
+            sampler["output"] =
+                b_.accessor(values, one_key ? 1 : c->count, static_cast<std::size_t>(width), {}, {}, c->stored);
             samplers_.push_back(std::move(sampler));
             t.samplers.emplace_back(path, samplers_.size() - 1);
         }
@@ -207,8 +215,9 @@ private:
 }  // namespace
 
 std::unique_ptr<table_output> make_new_gltf_file(format f, const std::optional<std::string>& target, std::ostream& out,
-                                                 commit_mode commit, std::vector<gltf_node> skeleton, warnings& warn) {
-    return std::make_unique<new_file_table>(f, target, out, commit, std::move(skeleton), warn);
+                                                 commit_mode commit, bool short_rotations,
+                                                 std::vector<gltf_node> skeleton, warnings& warn) {
+    return std::make_unique<new_file_table>(f, target, out, commit, short_rotations, std::move(skeleton), warn);
 }
 
 }  // namespace keyrot

@@ -148,9 +148,11 @@ struct shared_parts {
 /// track), a translation, scale or weights channel on the rotation's times
 /// whose values never change (as 32-bit floats), LINEAR or STEP, is written
 /// as its first key alone: glTF holds a sampler's value beyond its keys,
-/// and keyrot reads a key that is alone at every key of its track.
+/// and keyrot reads a key that is alone at every key of its track. With
+/// `short_rotations`, a LINEAR or STEP rotation is stored as normalised
+/// 16-bit integers.
 std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const gltf_track& t, gltf_path path,
-                        shared_parts& shared, bool collapse) {
+                        shared_parts& shared, bool collapse, bool short_rotations) {
     const auto [vectors, how] = vectors_of(t, path);
     const std::vector<double>& times = vectors ? vectors->times : t.times;
     const std::string where = t.name.empty() ? b.source : keyrot::where(b.source, fmt::format("track '{}'", t.name));
@@ -162,6 +164,8 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const
         for (std::size_t j = 0; j < w; ++j) put({v[row * w + j]});
     };
     const bool spline = how == method::cubicspline;
+    const bool shorts = short_rotations && !vectors && !spline;  // (tangents are no unit quaternions)
+    std::string short_values;
     for (std::size_t i = 0; i < times.size(); ++i) {
         if (vectors) {
             const std::size_t w = vectors->width;
@@ -173,7 +177,8 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const
             for (const quat& q : {s.rotation_in, s.rotation, s.rotation_out}) put({q.x, q.y, q.z, q.w});
         } else {
             const quat& q = t.rotations[i];
-            put({q.x, q.y, q.z, q.w});
+            if (!shorts) put({q.x, q.y, q.z, q.w});
+            else for (const double c : {q.x, q.y, q.z, q.w}) append_normalized_short(short_values, c);
         }
     }
     if (collapse && vectors && !spline && vectors->times == t.times && constant(values, vectors->width))
@@ -183,7 +188,9 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const
     // (weights are SCALAR, a weight per morph target in each key's element)
     const std::size_t width = !vectors ? 4 : path == gltf_path::weights ? 1 : 3;
     std::size_t output;
-    if (key_times.size() == 1) {
+    if (shorts) {
+        output = b.accessor(short_values, times.size(), width, component::normalized_short);
+    } else if (key_times.size() == 1) {
         auto single = shared.single_values.find({width, values});
         if (single == shared.single_values.end())
             single = shared.single_values.emplace(std::pair(width, values), b.accessor(values, width, false)).first;
@@ -201,7 +208,7 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const
 
 /// The input file with the samplers of the channels keyrot read replaced.
 void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_builder& b, gltf_json& json,
-             warnings& warn) {
+             bool short_rotations, warnings& warn) {
     gltf_file& file = source.file;
     for (const auto& name : json.value("extensionsUsed", gltf_json::array()))
         if (!name.is_string() ||
@@ -313,7 +320,7 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
         const auto [a, c] = at;
         const auto [i, path] = who;
         const bool collapse = source.origins[i].rotation.has_value();
-        const std::size_t sampler = add_sampler(b, json, a, tracks[i], path, shared, collapse);
+        const std::size_t sampler = add_sampler(b, json, a, tracks[i], path, shared, collapse, short_rotations);
         json["animations"][a]["channels"][c]["sampler"] = sampler;
     }
     b.end_shared_view();
@@ -337,8 +344,9 @@ void move_image_uris(gltf_json& json, const std::string& from_directory, const s
 class rewritten_table final : public table_output {
 public:
     rewritten_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
-                    std::shared_ptr<gltf_source> source, warnings& warn)
-        : f_(f), target_(target), commit_(commit), out_(out), source_(std::move(source)), warn_(warn) {}
+                    bool short_rotations, std::shared_ptr<gltf_source> source, warnings& warn)
+        : f_(f), target_(target), commit_(commit), out_(out), short_rotations_(short_rotations),
+          source_(std::move(source)), warn_(warn) {}
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
         tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
         if (tracks_.size() < 2) return;
@@ -380,7 +388,7 @@ public:
         if (const auto& buffers = top_array(source_->file, "buffers"); !buffers.empty() && buffers[0].is_object())
             buffer = buffers[0];
         try {
-            rewrite(tracks_, *source_, b, json, warn_);
+            rewrite(tracks_, *source_, b, json, short_rotations_, warn_);
         } catch (const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
             throw input_error(source_->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
         }
@@ -395,6 +403,7 @@ private:
     std::optional<std::string> target_;
     commit_mode commit_;
     std::ostream& out_;
+    bool short_rotations_;
     std::shared_ptr<gltf_source> source_;
     warnings& warn_;
     std::vector<gltf_track> tracks_;
@@ -403,10 +412,12 @@ private:
 }  // namespace
 
 std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
-                                              commit_mode commit, std::shared_ptr<gltf_source> source,
-                                              std::vector<gltf_node> skeleton, warnings& warn) {
-    if (source) return std::make_unique<rewritten_table>(f, target, out, commit, std::move(source), warn);
-    return make_new_gltf_file(f, target, out, commit, std::move(skeleton), warn);
+                                              commit_mode commit, bool short_rotations,
+                                              std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton,
+                                              warnings& warn) {
+    if (source)
+        return std::make_unique<rewritten_table>(f, target, out, commit, short_rotations, std::move(source), warn);
+    return make_new_gltf_file(f, target, out, commit, short_rotations, std::move(skeleton), warn);
 }
 
 }  // namespace keyrot

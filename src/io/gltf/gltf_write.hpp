@@ -49,14 +49,17 @@ struct gltf_node {
 /// channels keyrot read replaced and all else kept, at finish(); otherwise
 /// a new file with the nodes of `skeleton` (none: a node per track) and one
 /// animation, its data set aside in temporary files as the rows come.
-/// Rotations, translations and scales are stored as 32-bit floats. Throws
-/// keyrot::error.
+/// Rotations, translations and scales are stored as 32-bit floats; with
+/// `short_rotations` (--compact), LINEAR and STEP rotations as normalised
+/// 16-bit integers. Throws keyrot::error.
 std::unique_ptr<table_output> make_gltf_table(format f, const std::optional<std::string>& target, std::ostream& out,
-                                              commit_mode commit, std::shared_ptr<gltf_source> source,
-                                              std::vector<gltf_node> skeleton, warnings& warn);
+                                              commit_mode commit, bool short_rotations,
+                                              std::shared_ptr<gltf_source> source, std::vector<gltf_node> skeleton,
+                                              warnings& warn);
 
 /// make_gltf_table's new file (gltf_new_file.cpp).
 std::unique_ptr<table_output> make_new_gltf_file(format f, const std::optional<std::string>& target, std::ostream& out,
-                                                 commit_mode commit, std::vector<gltf_node> skeleton, warnings& warn);
+                                                 commit_mode commit, bool short_rotations,
+                                                 std::vector<gltf_node> skeleton, warnings& warn);
 
 }  // namespace keyrot
