@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -33,10 +35,32 @@ void append_float(std::string& out, float v) {
     for (std::size_t b = 0; b < 4; ++b) out += static_cast<char>(raw >> (8 * b) & 0xff);
 }
 
-void append_normalized_short(std::string& out, double v) {
-    const auto s = static_cast<std::uint16_t>(static_cast<std::int16_t>(std::lround(std::clamp(v, -1.0, 1.0) * 32767)));
-    out += static_cast<char>(s & 0xff);
-    out += static_cast<char>(s >> 8);
+void append_normalized_shorts(std::string& out, std::span<const double, 4> q) {
+    constexpr double scale = 32767;
+    std::array<double, 4> down{};
+    for (std::size_t i = 0; i < 4; ++i) down[i] = std::clamp(std::floor(q[i] * scale), -scale, scale - 1);
+    // The nearest in angle has the largest cos² = (c·q)² / (c·c), c·q > 0;
+    // cos² within rounding of the best so far counts as a tie. (Lengths
+    // squared are sums of squared integers: exact.)
+    std::array<double, 4> best{};
+    double best_cos2 = -1, best_off = INFINITY;
+    for (unsigned up = 0; up < 16; ++up) {
+        std::array<double, 4> c{};
+        double dot = 0, length2 = 0;
+        for (std::size_t i = 0; i < 4; ++i) {
+            c[i] = down[i] + (up >> i & 1);
+            dot += c[i] * q[i], length2 += c[i] * c[i];
+        }
+        const double cos2 = dot * dot / length2, off = std::fabs(length2 - scale * scale);
+        if (!(dot > 0 && length2 >= (scale - 1) * (scale - 1) && length2 <= (scale + 1) * (scale + 1))) continue;
+        const bool tie = std::fabs(cos2 - best_cos2) <= 1e-15;
+        if ((!tie && cos2 > best_cos2) || (tie && off < best_off)) best = c, best_cos2 = cos2, best_off = off;
+    }
+    for (const double c : best) {
+        const auto s = static_cast<std::uint16_t>(static_cast<std::int16_t>(c));
+        out += static_cast<char>(s & 0xff);
+        out += static_cast<char>(s >> 8);
+    }
 }
 
 float single(double v, const std::string& where, const char* what) {

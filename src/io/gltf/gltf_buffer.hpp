@@ -6,6 +6,7 @@
 // buffer as a data: URI).
 #include <cmath>
 #include <optional>
+#include <span>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -25,11 +26,17 @@ void append_float(std::string& out, float v);
 /// How an accessor's components are stored.
 enum class component { float32, normalized_short };
 
-/// `v` in [-1, 1] as glTF stores a normalised SHORT, round(v × 32767): 2
-/// bytes, little-endian, appended to `out`. Off by at most 0.5 / 32767; a
-/// unit quaternion so stored is within 4 × 0.5 / 32767 radians (0.0035°)
-/// of its rotation, whatever its length then.
-void append_normalized_short(std::string& out, double v);
+/// Unit quaternion `q` (x, y, z, w) as glTF stores normalised SHORTs, 2
+/// bytes each, little-endian, appended to `out`: of the integer vectors
+/// next to q × 32767 (each component rounded down or up) whose length is
+/// within 1 of 32767, the one nearest q in angle (of two as near, the
+/// length nearer 32767). q × 32767 rounded to nearest is one of them, so
+/// the one taken is within its angle: a component off by 0.5 / 32767 at
+/// most, 2 asin(2 × 0.5 / 32767) = 0.0035°. And a quaternion read from
+/// such integers and normalised is within 1 of them times 32767 in every
+/// component, so it is stored as them again: a chain of conversions keeps
+/// the integers.
+void append_normalized_shorts(std::string& out, std::span<const double, 4> q);
 
 /// `v` as a 32-bit float; an input_error at `where` ("walk.csv: track 'hip'") where it is too large for one.
 float single(double v, const std::string& where, const char* what);

@@ -125,9 +125,10 @@ private:
             append_float(bytes, time);
             times.append(bytes);
             bytes.clear();
-            for (const double v : value)
-                if (stored == component::float32) append_float(bytes, single_at(v, where, what));
-                else append_normalized_short(bytes, v);
+            if (stored == component::normalized_short)
+                append_normalized_shorts(bytes, std::span<const double, 4>(value.begin(), 4));
+            else
+                for (const double v : value) append_float(bytes, single_at(v, where, what));
             values.append(bytes);
             if (count++ == 0) first = time, first_value = bytes;
             else still = still && bytes == first_value;

@@ -178,7 +178,7 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const
         } else {
             const quat& q = t.rotations[i];
             if (!shorts) put({q.x, q.y, q.z, q.w});
-            else for (const double c : {q.x, q.y, q.z, q.w}) append_normalized_short(short_values, c);
+            else append_normalized_shorts(short_values, std::array{q.x, q.y, q.z, q.w});
         }
     }
     if (collapse && vectors && !spline && vectors->times == t.times && constant(values, vectors->width))
