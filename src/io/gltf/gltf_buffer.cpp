@@ -39,25 +39,30 @@ void append_normalized_shorts(std::string& out, std::span<const double, 4> q) {
     constexpr double scale = 32767;
     std::array<double, 4> down{};
     for (std::size_t i = 0; i < 4; ++i) down[i] = std::clamp(std::floor(q[i] * scale), -scale, scale - 1);
-    // The nearest in angle has the largest cos² = (c·q)² / (c·c), c·q > 0;
-    // cos² within rounding of the best so far counts as a tie. (Lengths
-    // squared are sums of squared integers: exact.)
-    std::array<double, 4> best{};
-    double best_cos2 = -1, best_off = INFINITY;
-    for (unsigned up = 0; up < 16; ++up) {
-        std::array<double, 4> c{};
-        double dot = 0, length2 = 0;
-        for (std::size_t i = 0; i < 4; ++i) {
-            c[i] = down[i] + (up >> i & 1);
-            dot += c[i] * q[i], length2 += c[i] * c[i];
+    // Candidate `up` rounds component i up where its bit i is set; the
+    // sums side by side, which the compiler vectorises. (Lengths squared
+    // are sums of squared integers: exact.)
+    std::array<double, 16> dot{}, length2{};
+    for (std::size_t i = 0; i < 4; ++i)
+        for (unsigned up = 0; up < 16; ++up) {
+            const double c = down[i] + (up >> i & 1);
+            dot[up] += c * q[i], length2[up] += c * c;
         }
-        const double cos2 = dot * dot / length2, off = std::fabs(length2 - scale * scale);
-        if (!(dot > 0 && length2 >= (scale - 1) * (scale - 1) && length2 <= (scale + 1) * (scale + 1))) continue;
+    // The nearest in angle has the largest cos² = (c·q)² / (c·c), c·q > 0;
+    // cos² within rounding of the best so far counts as a tie. From the
+    // one rounded to nearest, which is always among them.
+    unsigned best = 0;
+    for (std::size_t i = 0; i < 4; ++i) best |= (q[i] * scale - down[i] >= 0.5 ? 1u : 0u) << i;
+    double best_cos2 = dot[best] * dot[best] / length2[best], best_off = std::fabs(length2[best] - scale * scale);
+    for (unsigned up = 0; up < 16; ++up) {
+        const double cos2 = dot[up] * dot[up] / length2[up], off = std::fabs(length2[up] - scale * scale);
+        if (!(dot[up] > 0 && length2[up] >= (scale - 1) * (scale - 1) && length2[up] <= (scale + 1) * (scale + 1)))
+            continue;
         const bool tie = std::fabs(cos2 - best_cos2) <= 1e-15;
-        if ((!tie && cos2 > best_cos2) || (tie && off < best_off)) best = c, best_cos2 = cos2, best_off = off;
+        if ((!tie && cos2 > best_cos2) || (tie && off < best_off)) best = up, best_cos2 = cos2, best_off = off;
     }
-    for (const double c : best) {
-        const auto s = static_cast<std::uint16_t>(static_cast<std::int16_t>(c));
+    for (std::size_t i = 0; i < 4; ++i) {
+        const auto s = static_cast<std::uint16_t>(static_cast<std::int16_t>(down[i] + (best >> i & 1)));
         out += static_cast<char>(s & 0xff);
         out += static_cast<char>(s >> 8);
     }
