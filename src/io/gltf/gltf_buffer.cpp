@@ -39,9 +39,8 @@ void append_normalized_shorts(std::string& out, std::span<const double, 4> q) {
     constexpr double scale = 32767;
     std::array<double, 4> down{};
     for (std::size_t i = 0; i < 4; ++i) down[i] = std::clamp(std::floor(q[i] * scale), -scale, scale - 1);
-    // Candidate `up` rounds component i up where its bit i is set; the
-    // sums side by side, which the compiler vectorises. (Lengths squared
-    // are sums of squared integers: exact.)
+    // Candidate `up` rounds component i up where its bit i is set. (Lengths
+    // squared are sums of squared integers: exact.)
     std::array<double, 16> dot{}, length2{};
     for (std::size_t i = 0; i < 4; ++i)
         for (unsigned up = 0; up < 16; ++up) {

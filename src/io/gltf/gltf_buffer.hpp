@@ -6,8 +6,8 @@
 // buffer as a data: URI).
 #include <cmath>
 #include <optional>
-#include <span>
 #include <ostream>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
