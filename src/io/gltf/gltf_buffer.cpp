@@ -100,15 +100,11 @@ std::size_t buffer_builder::accessor(const std::vector<float>& values, std::size
         for (std::size_t i = 0; i < values.size(); ++i)
             lo[i % width] = std::min(lo[i % width], values[i]), hi[i % width] = std::max(hi[i % width], values[i]);
     }
-    return placed(data, values.size() / width, width, lo, hi, component::float32);
+    return accessor(data, values.size() / width, width, component::float32, lo, hi);
 }
 
-std::size_t buffer_builder::accessor(std::string_view data, std::size_t count, std::size_t width, component c) {
-    return placed(data, count, width, {}, {}, c);
-}
-
-std::size_t buffer_builder::placed(std::string_view data, std::size_t count, std::size_t width,
-                                   const std::vector<float>& lo, const std::vector<float>& hi, component c) {
+std::size_t buffer_builder::accessor(std::string_view data, std::size_t count, std::size_t width, component c,
+                                     const std::vector<float>& lo, const std::vector<float>& hi) {
     if (!shared_) return accessor(view(data), count, width, lo, hi, c);
     if (!shared_->index) shared_->index = begin_view(0, 0), shared_->start = bin.size();
     const std::size_t offset = bin.size() - shared_->start;

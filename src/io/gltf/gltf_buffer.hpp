@@ -67,8 +67,10 @@ public:
     /// when `bounds`: in a bufferView of its own, or in the shared one.
     std::size_t accessor(const std::vector<float>& values, std::size_t width, bool bounds);
     /// An accessor of `count` elements of `width` components `c`, stored as
-    /// `data` holds them: in a bufferView of its own, or in the shared one.
-    std::size_t accessor(std::string_view data, std::size_t count, std::size_t width, component c);
+    /// `data` holds them, with the bounds `lo` and `hi` where they are given:
+    /// in a bufferView of its own, or in the shared one.
+    std::size_t accessor(std::string_view data, std::size_t count, std::size_t width, component c,
+                         const std::vector<float>& lo = {}, const std::vector<float>& hi = {});
     /// Until end_shared_view(), the accessors of values share one bufferView
     /// (nothing else may be added to the buffer meanwhile): a view each
     /// costs more JSON than a key's worth of data.
@@ -85,8 +87,6 @@ private:
         std::size_t start = 0;
     };
     std::size_t begin_view(std::size_t length, std::size_t remainder);
-    std::size_t placed(std::string_view data, std::size_t count, std::size_t width, const std::vector<float>& lo,
-                       const std::vector<float>& hi, component c);
     std::optional<shared_view> shared_;
     std::size_t append(const char* name, gltf_json value);
     gltf_json& json_;

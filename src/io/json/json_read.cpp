@@ -210,10 +210,6 @@ bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink, warn
     return false;
 }
 
-}  // namespace
-
-namespace {
-
 /// Whether `text`, the start of a document, has a syntax error before its
 /// end (which no more text could mend).
 bool broken_before_end(std::string_view text) {
