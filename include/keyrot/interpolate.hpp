@@ -140,12 +140,14 @@ private:
         double time;
         quat q, s;
         std::array<double, 3> e;
-        spline_key spline;  // cubicspline
     };
     method how_;
     path way_;
     std::optional<euler_seq> seq_;
     std::vector<entry> window_;  // at most three keys
+    // cubicspline: the window's keys as the spline passes them (apart, so
+    // that the other methods' entries stay small: reduce builds a segment per probe)
+    std::vector<spline_key> splines_;
     bool solve_stretch(bool end);  // cubic: the next stretch's velocities; false if it must wait
     struct {
         std::vector<double> times;  // the keys from `first` on (global indices)

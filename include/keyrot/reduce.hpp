@@ -79,7 +79,7 @@ private:
     std::size_t good_ = 0;             // the farthest key known to be reachable from keys_[0]
     errors good_errors_;
     key first_;
-    double from_first_deg_ = 0, from_first_translation_ = 0;  // the farthest any key is from the first
+    double from_first_deg_ = 0, from_first_translation_ = 0;  // the farthest any key is from the first, while held_
     bool held_ = false;                                       // every key so far within tolerance of the first
     std::vector<key> pending_;  // kept after the first while held_: out once the track moves
     reduce_summary summary_;

@@ -197,7 +197,7 @@ segment_builder::segment_builder(method m, path p, const std::optional<euler_seq
 }
 
 void segment_builder::clear() noexcept {
-    window_.clear();
+    window_.clear(), splines_.clear();
     cubic_.times.clear(), cubic_.keys.clear(), cubic_.phi.clear(), cubic_.velocity.clear();
     cubic_.first = cubic_.final = cubic_.next = 0;
 }
@@ -222,11 +222,11 @@ quat segment_builder::add(const key& k) {
     if (flips && !window_.empty() && dot(window_.back().q, q) < 0) q = -q;
     std::array<double, 3> e{};
     if (how_ == method::euler) e = k.euler ? *k.euler : to_euler(k.rotation, *seq_).angles;
-    window_.push_back({k.time, q, q, e, {}});  // s = q until both neighbours are known
+    window_.push_back({k.time, q, q, e});  // s = q until both neighbours are known
     // A key without a spline passes its rotation, with no tangents.
     if (how_ == method::cubicspline)
-        window_.back().spline =
-            k.spline ? static_cast<const spline_key&>(*k.spline) : spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}};
+        splines_.push_back(k.spline ? static_cast<const spline_key&>(*k.spline)
+                                    : spline_key{q, {0, 0, 0, 0}, {0, 0, 0, 0}, {}, {}, {}, {}});
     const std::size_t n = window_.size();
     if (how_ == method::squad && n >= 3) window_[n - 2].s = squad_control(window_[n - 3].q, window_[n - 2].q, q);
     return q;
@@ -253,7 +253,10 @@ bool segment_builder::pop(segment& out, bool end) {
     out.t0 = a.time, out.t1 = b.time, out.q0 = a.q, out.q1 = b.q;
     out.s0_ = a.s, out.s1_ = b.s;
     if (how_ == method::euler) out.e0_ = a.e, out.e1_ = b.e, out.seq_ = *seq_;
-    if (how_ == method::cubicspline) out.spline0_ = a.spline, out.spline1_ = b.spline;
+    if (how_ == method::cubicspline) {
+        out.spline0_ = splines_[0], out.spline1_ = splines_[1];
+        splines_.erase(splines_.begin());
+    }
     window_.erase(window_.begin());
     return true;
 }

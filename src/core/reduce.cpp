@@ -95,16 +95,18 @@ void track_reducer::add(const key& k) {
         if (opts_.how != method::squad) emit(0, {});
         held_ = true;
     }
-    from_first_deg_ =
-        std::max(from_first_deg_, from_radians(geodesic_angle(first_.rotation, k.rotation), angle_unit::degrees));
-    from_first_translation_ = std::max(
-        {from_first_translation_, distance(first_.translation, k.translation), distance(first_.scale, k.scale),
-         weights_distance(first_.weights, first_.weights, 0, method::step, k.weights)});
-    if (channels_of(k) != channels_of(first_)) from_first_translation_ = INFINITY;
-    if (held_ && !(from_first_deg_ <= opts_.tol_deg && from_first_translation_ <= opts_.tol_translation)) {
-        held_ = false;  // the track moves: the keys kept meanwhile go out
-        for (const key& p : pending_) keep_(p);
-        pending_.clear();
+    if (held_) {  // (once the track has moved, how far from the first key is never asked again)
+        from_first_deg_ = std::max(from_first_deg_,
+                                   from_radians(geodesic_angle(first_.rotation, k.rotation), angle_unit::degrees));
+        from_first_translation_ = std::max(
+            {from_first_translation_, distance(first_.translation, k.translation), distance(first_.scale, k.scale),
+             weights_distance(first_.weights, first_.weights, 0, method::step, k.weights)});
+        if (channels_of(k) != channels_of(first_)) from_first_translation_ = INFINITY;
+        if (!(from_first_deg_ <= opts_.tol_deg && from_first_translation_ <= opts_.tol_translation)) {
+            held_ = false;  // the track moves: the keys kept meanwhile go out
+            for (const key& p : pending_) keep_(p);
+            pending_.clear();
+        }
     }
     if (opts_.how != method::squad) advance(false);
 }
