@@ -152,6 +152,24 @@ std::string parent_of(const std::string& path) {
     return parent.empty() ? "." : parent.string();
 }
 
+/// Puts the file at `temp` in `target`'s place at once: a reader finds the
+/// old file or the new one, never neither. A regular file at `target` is
+/// exchanged with it (renameat2's RENAME_EXCHANGE), then removed from
+/// `temp`, rather than renamed over: ext4 (auto_da_alloc) writes a file
+/// renamed over another back to disk inside the rename, most of the tail
+/// of a large output's run. Durability is --fsync's. Anything else at
+/// `target`, none, or a filesystem that cannot exchange: a rename. Returns
+/// false, errno set, where the file could not be put in place.
+bool put_in_place(const std::string& temp, const std::string& target) {
+    struct stat st;
+    if (::lstat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
+        ::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
+        ::unlink(temp.c_str());  // (the old file: where the exchange could be made, so can this)
+        return true;
+    }
+    return std::rename(temp.c_str(), target.c_str()) == 0;
+}
+
 /// Makes a rename in `directory` durable. (Some filesystems cannot sync a
 /// directory: the rename stands all the same.)
 void sync_directory(const std::string& directory) {
@@ -295,7 +313,7 @@ void output_file::commit() {
         mode_.batch->add({path_, std::exchange(temp_, {}), target_, std::exchange(slot_, std::nullopt)});
         return;
     }
-    if (std::rename(temp_.c_str(), target_.c_str()) != 0) fail(errno);
+    if (!put_in_place(temp_, target_)) fail(errno);
     temp_.clear();
     if (slot_) temporaries::instance().remove(*std::exchange(slot_, std::nullopt));
     if (sync_here) sync_directory(parent_of(target_));
@@ -335,7 +353,7 @@ void durable_batch::finish() {
         throw error(*failure);
     }
     for (pending& f : files) {
-        if (std::rename(f.temp.c_str(), f.target.c_str()) != 0) {
+        if (!put_in_place(f.temp, f.target)) {
             if (!failure) failure = cannot_write(f.path, errno);
             std::remove(f.temp.c_str());
         }

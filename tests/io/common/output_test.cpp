@@ -42,6 +42,25 @@ TEST_CASE("output_file: the old file until commit, the new one after, no tempora
         REQUIRE(::stat(path.c_str(), &st) == 0);
         CHECK((st.st_mode & 07777) == 0640);  // the permissions of the file it replaced
     }
+    SUBCASE("another name of the old file keeps the old text: the name is given the new file, not written over") {
+        std::filesystem::create_hard_link(path, dir / "backup.csv");
+        write_file_atomically(path.string(), "new\n");
+        CHECK(s.read(path) == "new\n");
+        CHECK(s.read(dir / "backup.csv") == "old\n");
+        CHECK(files_in(dir) == 2);
+    }
+    SUBCASE("--output-dir's names: a link there is replaced, not written through; a directory is left as it is") {
+        std::filesystem::create_symlink("out.csv", dir / "link.csv");
+        write_file_atomically((dir / "link.csv").string(), "new\n", {.follow_links = false});
+        CHECK_FALSE(std::filesystem::is_symlink(dir / "link.csv"));
+        CHECK(s.read(dir / "link.csv") == "new\n");
+        CHECK(s.read(path) == "old\n");
+        std::filesystem::create_directory(dir / "table.csv");
+        std::ofstream(dir / "table.csv" / "inside") << "kept\n";
+        CHECK_THROWS_AS(write_file_atomically((dir / "table.csv").string(), "new\n", {.follow_links = false}), error);
+        CHECK(s.read(dir / "table.csv" / "inside") == "kept\n");
+        CHECK(files_in(dir) == 3);  // out.csv, link.csv, table.csv: no temporary, nothing moved aside
+    }
     SUBCASE("dropped") {
         {
             output_file f(path.string());
