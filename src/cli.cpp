@@ -119,9 +119,9 @@ columns and JSON fields a file needs.
 Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (one line on standard error).)");
     options o;
     cli::raw_flags f;
-    // Only the command named first gets its options defined (about half of
-    // start-up went to defining all five); anything else defines all, for
-    // --help and for the error message.
+    // Only the command named first is defined (about half of start-up went
+    // to defining all of them); anything else defines all, for --help and
+    // for the error message.
     const std::string_view first = argc > 1 ? argv[1] : "";
     const bool known = std::any_of(commands.begin(), commands.end(), [&](const auto& c) { return first == c.name; });
     if (!known && !first.empty() && first.front() != '-' && first != "help") {
@@ -132,10 +132,11 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
     }
     std::array<CLI::App*, std::tuple_size_v<decltype(commands)>> subs{};
     for (std::size_t i = 0; i < commands.size(); ++i) {
+        if (known && first != commands[i].name) continue;
         subs[i] = app.add_subcommand(commands[i].name, commands[i].description);
-        if (!known || first == commands[i].name) commands[i].define(*subs[i], o, f);
+        commands[i].define(*subs[i], o, f);
     }
-    app.add_subcommand("help", "help on a command, or on the formats: keyrot help formats");
+    if (!known) app.add_subcommand("help", "help on a command, or on the formats: keyrot help formats");
     if (first == "help") {
         print_help_topic(app, subs, argc, argv, out);
         return std::nullopt;
@@ -161,7 +162,7 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
         throw usage_error(fmt::format("{}: {} (see keyrot {} --help)", first, what, first));
     }
     for (std::size_t i = 0; i < commands.size(); ++i)
-        if (subs[i]->parsed()) o.cmd = commands[i].cmd;
+        if (subs[i] && subs[i]->parsed()) o.cmd = commands[i].cmd;
     cli::finish(o, f);
     if (o.cmd == command::compare || o.cmd == command::reduce)
         for (const auto& [flag, tol] : {std::pair("--tol", o.tol_deg), std::pair("--tol-translation", o.tol_translation),
