@@ -23,9 +23,9 @@ namespace keyrot::detail {
 class chunked_output {
 public:
     chunked_output(const std::optional<std::string>& path, std::ostream& out, commit_mode commit) : out_(out) {
-        // (text_ grows as it fills, not reserved: a megabyte mapped and unmapped
-        // was a tenth of a small output's run, and a large one is formatted
-        // into the batches' own texts)
+        // (text_ grows as it fills, not reserved up front: mapping a megabyte
+        // costs a small output more than its rows, and a large output is
+        // formatted into the batches' own texts)
         if (path) file_.emplace(*path, commit);
     }
     chunked_output(const chunked_output&) = delete;
