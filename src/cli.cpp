@@ -119,9 +119,9 @@ columns and JSON fields a file needs.
 Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (one line on standard error).)");
     options o;
     cli::raw_flags f;
-    // Only the command named first is defined (about half of start-up went
-    // to defining all of them); anything else defines all, for --help and
-    // for the error message.
+    // Only the command named first is defined: each command and option is
+    // CLI11 allocations at every start-up. Anything else defines all, for
+    // --help and for the error message.
     const std::string_view first = argc > 1 ? argv[1] : "";
     const bool known = std::any_of(commands.begin(), commands.end(), [&](const auto& c) { return first == c.name; });
     if (!known && !first.empty() && first.front() != '-' && first != "help") {

@@ -12,14 +12,14 @@ namespace keyrot {
 
 class durable_batch;
 
-/// How an output file is put in place. By default as `sort -o` and
-/// `install` do: written beside its target and put in its place at once (a
-/// file there exchanged with it, then removed; else renamed), so that
-/// readers never see a partial file and a failure leaves the old one, but
-/// not waited for on the disk. With `fsync` (--fsync), also durable against a power cut:
-/// the new file's data on disk before the rename, the rename on disk
-/// before success; with a `batch` as well, that wait is paid once for the
-/// batch's files (durable_batch) rather than once for each.
+/// How an output file is put in place. By default: written beside its
+/// target and put in its place at once (a file there exchanged with it,
+/// then removed; else renamed), so that readers never see a partial file
+/// and a failure leaves the old one, but not waited for on the disk. With
+/// `fsync` (--fsync), also durable against a power cut: the new file's data
+/// on disk before it is put in place, that change on disk before success;
+/// with a `batch` as well, that wait is paid once for the batch's files
+/// (durable_batch) rather than once for each.
 struct commit_mode {
     bool fsync = false;
     durable_batch* batch = nullptr;
