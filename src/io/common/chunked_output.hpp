@@ -23,9 +23,6 @@ namespace keyrot::detail {
 class chunked_output {
 public:
     chunked_output(const std::optional<std::string>& path, std::ostream& out, commit_mode commit) : out_(out) {
-        // (text_ grows as it fills, not reserved up front: mapping a megabyte
-        // costs a small output more than its rows, and a large output is
-        // formatted into the batches' own texts)
         if (path) file_.emplace(*path, commit);
     }
     chunked_output(const chunked_output&) = delete;
@@ -104,6 +101,9 @@ private:
 
     std::ostream& out_;
     std::optional<output_file> file_;
+    // (text_ grows as it fills, not reserved up front: mapping a megabyte
+    // costs a small output more than its rows, and a large output is
+    // formatted into the batches' own texts)
     std::string text_, spare_;
     std::mutex mutex_;
     std::condition_variable changed_;
