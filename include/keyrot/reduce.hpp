@@ -62,6 +62,14 @@ private:
     /// to the first key out of tolerance, or with `whole` all of them.
     errors between(std::size_t from, std::size_t to, std::optional<std::size_t> before = std::nullopt,
                    std::optional<std::size_t> after = std::nullopt, bool whole = false) const;
+    /// between(0, to).ok, the probes' question: for slerp, most keys are
+    /// answered without the exact curve (core/arc_screen.hpp).
+    bool reaches(std::size_t to) const;
+    /// The segment from key `from` to key `to` as played (squad: with `before` and `after`).
+    segment segment_between(std::size_t from, std::size_t to, std::optional<std::size_t> before = std::nullopt,
+                            std::optional<std::size_t> after = std::nullopt) const;
+    /// Key k's largest distance, by translation, scale or weights, from keys a and b played at h.
+    double translation_error(const key& a, const key& b, double h, const key& k) const;
     void advance(bool end);
     void emit(std::size_t i, const errors& e);
     void reduce_squad();
@@ -77,7 +85,6 @@ private:
     mutable segment_builder builder_;  // between()'s, kept for its memory
     std::vector<key> keys_;            // from the last kept key (squad: the whole track)
     std::size_t good_ = 0;             // the farthest key known to be reachable from keys_[0]
-    errors good_errors_;
     key first_;
     double from_first_deg_ = 0, from_first_translation_ = 0;  // the farthest any key is from the first, while held_
     bool held_ = false;                                       // every key so far within tolerance of the first

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/arc_screen.hpp"
 #include "keyrot/convert.hpp"
 #include "keyrot/error.hpp"
 #include "keyrot/resample.hpp"
@@ -11,6 +12,11 @@ namespace keyrot {
 namespace {
 
 double distance(const std::optional<vec3>& a, const std::optional<vec3>& b) { return a && b ? norm(*a - *b) : 0; }
+
+/// How far, in degrees, key k's rotation is from q.
+double rotation_error(quat q, const key& k) {
+    return from_radians(geodesic_angle(q, k.rotation), angle_unit::degrees);
+}
 
 /// A vector channel between keys `a` and `b` at `h`, as resample plays it.
 std::optional<vec3> vector_at(const std::optional<vec3>& a, const std::optional<vec3>& b, double h, method how) {
@@ -43,6 +49,27 @@ track_reducer::track_reducer(const reduce_options& opts, const std::optional<eul
                                            "with a guarantee)");
 }
 
+segment track_reducer::segment_between(std::size_t from, std::size_t to, std::optional<std::size_t> before,
+                                       std::optional<std::size_t> after) const {
+    segment_builder& builder = builder_;
+    builder.clear();
+    if (before) builder.add(keys_[*before]);
+    builder.add(keys_[from]);
+    builder.add(keys_[to]);
+    if (after) builder.add(keys_[*after]);
+    segment s;
+    do builder.pop(s, true);
+    while (s.t0 != keys_[from].time);
+    return s;
+}
+
+double track_reducer::translation_error(const key& a, const key& b, double h, const key& k) const {
+    return std::max({distance(vector_at(a.translation, b.translation, h, opts_.translation_how.value_or(opts_.how)),
+                              k.translation),
+                     distance(vector_at(a.scale, b.scale, h, opts_.scale_how.value_or(opts_.how)), k.scale),
+                     weights_distance(a.weights, b.weights, h, opts_.weights_how.value_or(opts_.how), k.weights)});
+}
+
 track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, std::optional<std::size_t> before,
                                              std::optional<std::size_t> after, bool whole) const {
     const key& a = keys_[from];
@@ -50,29 +77,15 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
     errors e;
     // Only keys of the same channels as both ends are played from them.
     if (channels_of(a) != channels_of(b) && to != from + 1) return {false, 0, 0, from + 1};
-    segment_builder& builder = builder_;
-    builder.clear();
-    if (before) builder.add(keys_[*before]);
-    builder.add(a);
-    builder.add(b);
-    if (after) builder.add(keys_[*after]);
-    segment s;
-    do builder.pop(s, true);
-    while (s.t0 != a.time);
+    const segment s = segment_between(from, to, before, after);
     const segment_curve curve = s.curve();
-    const method translation_how = opts_.translation_how.value_or(opts_.how);
-    const method scale_how = opts_.scale_how.value_or(opts_.how);
-    const method weights_how = opts_.weights_how.value_or(opts_.how);
     double bad_deg = -1, bad_translation = -1;
     for (std::size_t i = from + 1; i < to && (e.ok || whole); ++i) {
         const key& k = keys_[i];
         if (channels_of(k) != channels_of(a)) return {false, e.deg, e.translation, i};
         const double h = (k.time - a.time) / (b.time - a.time);
-        const double deg = from_radians(geodesic_angle(curve.at(h), k.rotation), angle_unit::degrees);
-        const double translation =
-            std::max({distance(vector_at(a.translation, b.translation, h, translation_how), k.translation),
-                      distance(vector_at(a.scale, b.scale, h, scale_how), k.scale),
-                      weights_distance(a.weights, b.weights, h, weights_how, k.weights)});
+        const double deg = rotation_error(curve.at(h), k);
+        const double translation = translation_error(a, b, h, k);
         e.deg = std::max(e.deg, deg), e.translation = std::max(e.translation, translation);
         if (deg <= opts_.tol_deg && translation <= opts_.tol_translation) continue;
         e.ok = false;
@@ -82,6 +95,33 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
             e.bad = i, bad_deg = rotation_out, bad_translation = translation;
     }
     return e;
+}
+
+bool track_reducer::reaches(std::size_t to) const {
+    if (opts_.how != method::slerp) return between(0, to).ok;
+    const key& a = keys_[0];
+    const key& b = keys_[to];
+    if (channels_of(a) != channels_of(b) && to != 1) return false;
+    // The keys with the signs the path gives them, without a segment (it is made only if a key needs it).
+    builder_.clear();
+    const quat qa = builder_.add(a), qb = builder_.add(b);
+    const arc_screen screen(qa, qb, opts_.tol_deg);
+    if (!screen.usable()) return between(0, to).ok;
+    std::optional<segment_curve> curve;  // set up for the first key the screen leaves unsure
+    for (std::size_t i = 1; i < to; ++i) {
+        const key& k = keys_[i];
+        if (channels_of(k) != channels_of(a)) return false;
+        const double h = (k.time - a.time) / (b.time - a.time);
+        switch (screen.at(h, k.rotation)) {
+            case arc_screen::verdict::beyond: return false;
+            case arc_screen::verdict::within: break;
+            case arc_screen::verdict::unsure:
+                if (!curve) curve = segment_between(0, to).curve();
+                if (!(rotation_error(curve->at(h), k) <= opts_.tol_deg)) return false;
+        }
+        if (!(translation_error(a, b, h, k) <= opts_.tol_translation)) return false;
+    }
+    return true;
 }
 
 void track_reducer::add(const key& k) {
@@ -96,8 +136,7 @@ void track_reducer::add(const key& k) {
         held_ = true;
     }
     if (held_) {  // (once the track has moved, how far from the first key is never asked again)
-        from_first_deg_ = std::max(from_first_deg_,
-                                   from_radians(geodesic_angle(first_.rotation, k.rotation), angle_unit::degrees));
+        from_first_deg_ = std::max(from_first_deg_, rotation_error(first_.rotation, k));
         from_first_translation_ = std::max(
             {from_first_translation_, distance(first_.translation, k.translation), distance(first_.scale, k.scale),
              weights_distance(first_.weights, first_.weights, 0, method::step, k.weights)});
@@ -114,26 +153,22 @@ void track_reducer::add(const key& k) {
 void track_reducer::advance(bool end) {
     while (keys_.size() > 1) {
         const std::size_t newest = keys_.size() - 1;
-        if (good_ == 0) good_ = 1, good_errors_ = {};  // neighbours: nothing between them
+        if (good_ == 0) good_ = 1;  // neighbours: nothing between them
         const std::size_t limit = std::min(2 * good_, max_stretch);
         if (limit > newest && !end) return;  // the next key to try has not come
         const std::size_t probe = std::min(limit, newest);
         if (probe != good_) {
-            errors e = between(0, probe);
-            if (e.ok) {
-                good_ = probe, good_errors_ = e;
+            if (reaches(probe)) {
+                good_ = probe;
                 continue;
             }
             for (std::size_t bad = probe; bad - good_ > 1;) {
                 const std::size_t mid = good_ + (bad - good_) / 2;
-                if ((e = between(0, mid)).ok)
-                    good_ = mid, good_errors_ = e;
-                else
-                    bad = mid;
+                (reaches(mid) ? good_ : bad) = mid;
             }
         }
         // Nothing farther to try (the end, or the longest stretch): good_ is kept.
-        emit(good_, good_errors_);
+        emit(good_, good_ > 1 ? between(0, good_) : errors{});
         keys_.erase(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(good_));
         good_ = 0;
     }
