@@ -62,9 +62,22 @@ private:
     /// to the first key out of tolerance, or with `whole` all of them.
     errors between(std::size_t from, std::size_t to, std::optional<std::size_t> before = std::nullopt,
                    std::optional<std::size_t> after = std::nullopt, bool whole = false) const;
-    /// between(0, to).ok, the probes' question: for slerp, most keys are
-    /// answered without the exact curve (core/arc_screen.hpp).
-    bool reaches(std::size_t to) const;
+    /// What a stretch tried was found to hold: whether every key is within
+    /// tolerance (between(0, to).ok), the largest rotation error (or, where
+    /// deg_exact is false, a bound at least as large) and the largest
+    /// translation error (where ok).
+    struct reach {
+        bool ok = false;
+        double deg = 0;
+        bool deg_exact = true;
+        double translation = 0;
+    };
+    /// The probes' question: for slerp, most keys are answered without the
+    /// exact curve (core/arc_screen.hpp).
+    reach reaches(std::size_t to) const;
+    /// The errors of the stretch kept, from keys_[0] to keys_[good_], found `r`:
+    /// exact where they could change what the summary says.
+    errors kept_errors(const reach& r) const;
     /// The segment from key `from` to key `to` as played (squad: with `before` and `after`).
     segment segment_between(std::size_t from, std::size_t to, std::optional<std::size_t> before = std::nullopt,
                             std::optional<std::size_t> after = std::nullopt) const;
@@ -85,6 +98,7 @@ private:
     mutable segment_builder builder_;  // between()'s, kept for its memory
     std::vector<key> keys_;            // from the last kept key (squad: the whole track)
     std::size_t good_ = 0;             // the farthest key known to be reachable from keys_[0]
+    reach good_reach_;                 // what reaching it found
     key first_;
     double from_first_deg_ = 0, from_first_translation_ = 0;  // the farthest any key is from the first, while held_
     bool held_ = false;                                       // every key so far within tolerance of the first

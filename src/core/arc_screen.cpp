@@ -1,5 +1,6 @@
 #include "core/arc_screen.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -8,6 +9,9 @@ namespace keyrot {
 namespace {
 
 double dot4(quat a, quat b) { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
+
+// The verdicts' margins from the tolerance, on the sine of the angle.
+constexpr double absolute = 1e-13, relative = 1e-9;
 
 }  // namespace
 
@@ -27,14 +31,13 @@ arc_screen::arc_screen(quat a, quat b, double tol_deg) noexcept : a_(a) {
     inv_sin_theta_ = 1 / sin_theta;
     // A rotation's angle is twice the angle between its quaternions.
     const double sin_tol = std::sin(tol_deg * std::numbers::pi / 360);
-    constexpr double absolute = 1e-13, relative = 1e-9;
     within_ = sin_tol * (1 - relative) - absolute;
     beyond_ = sin_tol * (1 + relative) + absolute;
     usable_ = true;
 }
 
-arc_screen::verdict arc_screen::at(double h, quat k) const noexcept {
-    if (!usable_) return verdict::unsure;
+arc_screen::finding arc_screen::at(double h, quat k) const noexcept {
+    if (!usable_) return {verdict::unsure, 1};
     const double phi = h * theta_;
     const double c0 = std::cos(phi), s = std::sin(phi) * inv_sin_theta_;
     const quat c{c0 * a_.w + s * w_.w, c0 * a_.x + s * w_.x, c0 * a_.y + s * w_.y, c0 * a_.z + s * w_.z};
@@ -42,9 +45,13 @@ arc_screen::verdict arc_screen::at(double h, quat k) const noexcept {
     const double t = dot4(k, c);
     const quat r{k.w - t * c.w, k.x - t * c.x, k.y - t * c.y, k.z - t * c.z};
     const double sin_off = std::sqrt(dot4(r, r));
-    if (sin_off < within_) return verdict::within;
-    if (sin_off > beyond_) return verdict::beyond;
-    return verdict::unsure;
+    if (sin_off < within_) return {verdict::within, sin_off};
+    if (sin_off > beyond_) return {verdict::beyond, sin_off};
+    return {verdict::unsure, sin_off};
+}
+
+double arc_screen::most_deg(double sin_off) const noexcept {
+    return 360 / std::numbers::pi * std::asin(std::min(1.0, sin_off + absolute)) * (1 + relative);
 }
 
 }  // namespace keyrot

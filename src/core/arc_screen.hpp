@@ -16,11 +16,18 @@ public:
     /// b more than 180 degrees of rotation apart or the same, a tolerance
     /// over 90 degrees.
     bool usable() const noexcept { return usable_; }
+    struct finding {
+        verdict v;
+        double sin_off;  // the sine of the angle between k and the arc's point (half the rotation's)
+    };
     /// Whether unit key k is within the tolerance of the arc's point at h in
     /// [0, 1], as the exact comparison (geodesic_angle with slerp_segment's
     /// point, in degrees, <= the tolerance) would find; unsure near the
     /// tolerance, where the rounding of either could tip it.
-    verdict at(double h, quat k) const noexcept;
+    finding at(double h, quat k) const noexcept;
+    /// At least the exact comparison's angle, in degrees, for a key whose
+    /// finding had `sin_off` (or the largest of several).
+    double most_deg(double sin_off) const noexcept;
 
 private:
     quat a_, w_;        // the arc: cos(h theta) a + sin(h theta) w / |w|, w = b - (a.b) a

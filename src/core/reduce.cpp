@@ -97,31 +97,50 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
     return e;
 }
 
-bool track_reducer::reaches(std::size_t to) const {
-    if (opts_.how != method::slerp) return between(0, to).ok;
+track_reducer::reach track_reducer::reaches(std::size_t to) const {
+    const auto exactly = [&] {
+        const errors e = between(0, to);
+        return reach{e.ok, e.deg, true, e.translation};
+    };
+    if (opts_.how != method::slerp) return exactly();
     const key& a = keys_[0];
     const key& b = keys_[to];
-    if (channels_of(a) != channels_of(b) && to != 1) return false;
+    if (channels_of(a) != channels_of(b) && to != 1) return {};
     // The keys with the signs the path gives them, without a segment (it is made only if a key needs it).
     builder_.clear();
     const quat qa = builder_.add(a), qb = builder_.add(b);
     const arc_screen screen(qa, qb, opts_.tol_deg);
-    if (!screen.usable()) return between(0, to).ok;
+    if (!screen.usable()) return exactly();
     std::optional<segment_curve> curve;  // set up for the first key the screen leaves unsure
+    bool screened = false;                               // a key the screen found within
+    double sin_off = 0, exact_deg = 0, translation = 0;  // the largest
     for (std::size_t i = 1; i < to; ++i) {
         const key& k = keys_[i];
-        if (channels_of(k) != channels_of(a)) return false;
+        if (channels_of(k) != channels_of(a)) return {};
         const double h = (k.time - a.time) / (b.time - a.time);
-        switch (screen.at(h, k.rotation)) {
-            case arc_screen::verdict::beyond: return false;
-            case arc_screen::verdict::within: break;
-            case arc_screen::verdict::unsure:
+        const arc_screen::finding f = screen.at(h, k.rotation);
+        switch (f.v) {
+            case arc_screen::verdict::beyond: return {};
+            case arc_screen::verdict::within: screened = true, sin_off = std::max(sin_off, f.sin_off); break;
+            case arc_screen::verdict::unsure: {
                 if (!curve) curve = segment_between(0, to).curve();
-                if (!(rotation_error(curve->at(h), k) <= opts_.tol_deg)) return false;
+                const double deg = rotation_error(curve->at(h), k);
+                if (!(deg <= opts_.tol_deg)) return {};
+                exact_deg = std::max(exact_deg, deg);
+            }
         }
-        if (!(translation_error(a, b, h, k) <= opts_.tol_translation)) return false;
+        const double moved = translation_error(a, b, h, k);
+        if (!(moved <= opts_.tol_translation)) return {};
+        translation = std::max(translation, moved);
     }
-    return true;
+    if (!screened) return {true, exact_deg, true, translation};
+    return {true, std::max(screen.most_deg(sin_off), exact_deg), false, translation};
+}
+
+track_reducer::errors track_reducer::kept_errors(const reach& r) const {
+    // A bound below the largest error so far changes nothing the summary says.
+    if (r.deg_exact || r.deg < summary_.worst_deg) return {true, r.deg_exact ? r.deg : 0, r.translation};
+    return between(0, good_);
 }
 
 void track_reducer::add(const key& k) {
@@ -153,22 +172,26 @@ void track_reducer::add(const key& k) {
 void track_reducer::advance(bool end) {
     while (keys_.size() > 1) {
         const std::size_t newest = keys_.size() - 1;
-        if (good_ == 0) good_ = 1;  // neighbours: nothing between them
+        if (good_ == 0) good_ = 1, good_reach_ = {true, 0, true, 0};  // neighbours: nothing between them
         const std::size_t limit = std::min(2 * good_, max_stretch);
         if (limit > newest && !end) return;  // the next key to try has not come
         const std::size_t probe = std::min(limit, newest);
         if (probe != good_) {
-            if (reaches(probe)) {
-                good_ = probe;
+            reach r = reaches(probe);
+            if (r.ok) {
+                good_ = probe, good_reach_ = r;
                 continue;
             }
             for (std::size_t bad = probe; bad - good_ > 1;) {
                 const std::size_t mid = good_ + (bad - good_) / 2;
-                (reaches(mid) ? good_ : bad) = mid;
+                if ((r = reaches(mid)).ok)
+                    good_ = mid, good_reach_ = r;
+                else
+                    bad = mid;
             }
         }
         // Nothing farther to try (the end, or the longest stretch): good_ is kept.
-        emit(good_, good_ > 1 ? between(0, good_) : errors{});
+        emit(good_, kept_errors(good_reach_));
         keys_.erase(keys_.begin(), keys_.begin() + static_cast<std::ptrdiff_t>(good_));
         good_ = 0;
     }

@@ -27,7 +27,7 @@ double exact_deg(quat a, quat b, double h, quat k) {
 
 }  // namespace
 
-TEST_CASE("arc_screen: within and beyond only where the exact comparison agrees, unsure near the tolerance") {
+TEST_CASE("arc_screen: within and beyond only where the exact comparison agrees, unsure near the tolerance; its bound") {
     std::mt19937_64 rng(48);
     std::normal_distribution<double> normal;
     std::uniform_real_distribution<double> uniform(0, 1);
@@ -47,10 +47,14 @@ TEST_CASE("arc_screen: within and beyond only where the exact comparison agrees,
         const quat k = slerp(a, b, h) * random_turn(tol * factor);
         const arc_screen screen(a, b, tol);
         REQUIRE(screen.usable());
-        const arc_screen::verdict v = screen.at(h, k);
+        const arc_screen::finding f = screen.at(h, k);
+        const arc_screen::verdict v = f.v;
         const double deg = exact_deg(a, b, h, k);
         if (v == arc_screen::verdict::within) CHECK(deg <= tol);
         if (v == arc_screen::verdict::beyond) CHECK(deg > tol);
+        // The bound on the exact angle holds, and is close: a hair over it.
+        CHECK(deg <= screen.most_deg(f.sin_off));
+        CHECK(screen.most_deg(f.sin_off) <= deg * (1 + 1e-8) + 1e-10);
         // Keys clearly in or out are decided (the screen saves the exact curve there).
         if ((factor == 0.5 || factor == 2 || factor == 1 - 1e-6 || factor == 1 + 1e-6) && tol >= 1e-3) {
             ++clear;
@@ -72,7 +76,8 @@ TEST_CASE("arc_screen: not used for keys more than 180 degrees apart, equal keys
     CHECK_FALSE(arc_screen(a, a, 0.01).usable());
     CHECK_FALSE(arc_screen(a, a * turn(1, 0, 0, 90), 91).usable());
     CHECK(arc_screen(a, a * turn(1, 0, 0, 90), 0).usable());
-    CHECK(arc_screen(a, a * turn(1, 0, 0, 90), 0.01).at(0.5, a) == arc_screen::verdict::beyond);
-    CHECK(arc_screen(a, a * turn(1, 0, 0, 90), 0.01).at(0.5, a * turn(1, 0, 0, 45)) == arc_screen::verdict::within);
-    CHECK(arc_screen(a, -a, 0.01).at(0.5, a) == arc_screen::verdict::unsure);
+    CHECK(arc_screen(a, a * turn(1, 0, 0, 90), 0.01).at(0.5, a).v == arc_screen::verdict::beyond);
+    CHECK(arc_screen(a, a * turn(1, 0, 0, 90), 0.01).at(0.5, a * turn(1, 0, 0, 45)).v == arc_screen::verdict::within);
+    CHECK(arc_screen(a, -a, 0.01).at(0.5, a).v == arc_screen::verdict::unsure);
+    CHECK(arc_screen(a, -a, 0.01).most_deg(arc_screen(a, -a, 0.01).at(0.5, a).sin_off) >= 180);
 }
