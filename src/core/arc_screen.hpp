@@ -13,8 +13,8 @@ public:
     /// tolerance in degrees of rotation.
     arc_screen(quat a, quat b, double tol_deg) noexcept;
     /// False where the screen cannot help and every verdict is unsure: a and
-    /// b more than 180 degrees of rotation apart or the same, a tolerance
-    /// over 90 degrees.
+    /// b 180 degrees of rotation apart or more (the long way round) or the
+    /// same, a tolerance over 90 degrees.
     bool usable() const noexcept { return usable_; }
     struct finding {
         verdict v;
