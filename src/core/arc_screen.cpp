@@ -8,8 +8,6 @@ namespace keyrot {
 
 namespace {
 
-double dot4(quat a, quat b) { return a.w * b.w + a.x * b.x + a.y * b.y + a.z * b.z; }
-
 // The verdicts' margins from the tolerance, on the sine of the angle.
 constexpr double absolute = 1e-13, relative = 1e-9;
 
@@ -23,9 +21,9 @@ arc_screen::arc_screen(quat a, quat b, double tol_deg) noexcept : a_(a) {
     // The exact comparison is as close. The verdicts keep a margin of 1e-13
     // (and a billionth of the tolerance) from the tolerance: what is unsure
     // is the exact comparison's to make.
-    const double d = dot4(a, b);
+    const double d = dot(a, b);
     w_ = {b.w - d * a.w, b.x - d * a.x, b.y - d * a.y, b.z - d * a.z};
-    const double sin_theta = std::sqrt(dot4(w_, w_));
+    const double sin_theta = std::sqrt(dot(w_, w_));
     if (!(d > 0 && sin_theta > 0 && tol_deg >= 0 && tol_deg <= 90)) return;
     theta_ = std::atan2(sin_theta, d);
     inv_sin_theta_ = 1 / sin_theta;
@@ -42,9 +40,9 @@ arc_screen::finding arc_screen::at(double h, quat k) const noexcept {
     const double c0 = std::cos(phi), s = std::sin(phi) * inv_sin_theta_;
     const quat c{c0 * a_.w + s * w_.w, c0 * a_.x + s * w_.x, c0 * a_.y + s * w_.y, c0 * a_.z + s * w_.z};
     // The sine of the angle between k and the line through c (k and -k are one rotation).
-    const double t = dot4(k, c);
+    const double t = dot(k, c);
     const quat r{k.w - t * c.w, k.x - t * c.x, k.y - t * c.y, k.z - t * c.z};
-    const double sin_off = std::sqrt(dot4(r, r));
+    const double sin_off = std::sqrt(dot(r, r));
     if (sin_off < within_) return {verdict::within, sin_off};
     if (sin_off > beyond_) return {verdict::beyond, sin_off};
     return {verdict::unsure, sin_off};

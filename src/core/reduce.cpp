@@ -13,6 +13,12 @@ namespace {
 
 double distance(const std::optional<vec3>& a, const std::optional<vec3>& b) { return a && b ? norm(*a - *b) : 0; }
 
+/// Only keys of the same channels as both ends are played from keys `from`
+/// and `to` (neighbours, with none between, always are).
+bool played_between(const key& a, const key& b, std::size_t from, std::size_t to) {
+    return channels_of(a) == channels_of(b) || to == from + 1;
+}
+
 /// How far, in degrees, key k's rotation is from q.
 double rotation_error(quat q, const key& k) {
     return from_radians(geodesic_angle(q, k.rotation), angle_unit::degrees);
@@ -75,8 +81,7 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
     const key& a = keys_[from];
     const key& b = keys_[to];
     errors e;
-    // Only keys of the same channels as both ends are played from them.
-    if (channels_of(a) != channels_of(b) && to != from + 1) return {false, 0, 0, from + 1};
+    if (!played_between(a, b, from, to)) return {false, 0, 0, from + 1};
     const segment s = segment_between(from, to, before, after);
     const segment_curve curve = s.curve();
     double bad_deg = -1, bad_translation = -1;
@@ -105,7 +110,7 @@ track_reducer::reach track_reducer::reaches(std::size_t to) const {
     if (opts_.how != method::slerp) return exactly();
     const key& a = keys_[0];
     const key& b = keys_[to];
-    if (channels_of(a) != channels_of(b) && to != 1) return {};
+    if (!played_between(a, b, 0, to)) return {};
     // The keys with the signs the path gives them, without a segment (it is made only if a key needs it).
     builder_.clear();
     const quat qa = builder_.add(a), qb = builder_.add(b);
@@ -172,7 +177,7 @@ void track_reducer::add(const key& k) {
 void track_reducer::advance(bool end) {
     while (keys_.size() > 1) {
         const std::size_t newest = keys_.size() - 1;
-        if (good_ == 0) good_ = 1, good_reach_ = {true, 0, true, 0};  // neighbours: nothing between them
+        if (good_ == 0) good_ = 1, good_reach_ = reach{.ok = true};  // neighbours: nothing between them
         const std::size_t limit = std::min(2 * good_, max_stretch);
         if (limit > newest && !end) return;  // the next key to try has not come
         const std::size_t probe = std::min(limit, newest);
