@@ -1,0 +1,62 @@
+#!/usr/bin/env python3
+"""The code a small run executes is laid out together at the front of the
+program (src/dist/startup.ld; docs/design.md, "Start-up"), and the list
+still names the code there is: checked in the link map of the build.
+
+    startup_layout_test.py BUILD/keyrot.map SRC/dist/startup.ld
+"""
+import re
+import sys
+
+SECTION = ".text.startup_path"
+# Functions every run executes, which the layout must hold.
+EVERY_RUN = ("main", "keyrot::parse_command_line(", "__libc_start_main", "keyrot::write_number(")
+# A list written for other code (functions renamed, cloned or gone) would
+# leave more of it unmatched than this.
+MOST_UNMATCHED = 0.1
+
+failures = []
+
+
+def check(ok, what):
+    if not ok:
+        failures.append(what)
+
+
+def main():
+    map_path, script_path = sys.argv[1], sys.argv[2]
+    listed = [line.strip() for line in open(script_path, encoding="utf-8") if line.strip().startswith("*")]
+    lines = open(map_path, encoding="utf-8", errors="replace").read().split("\n")
+    start = next((i for i, line in enumerate(lines) if line.strip() == SECTION or line.startswith(SECTION + " ")),
+                 None)
+    if start is None:
+        sys.exit(f"FAIL: no {SECTION} in {map_path}: was the program linked with {script_path}?")
+    end = next(i for i in range(start + 1, len(lines)) if lines[i] and not lines[i][0].isspace())
+    block = lines[start:end]
+    size = int(re.search(r"0x[0-9a-f]+\s+(0x[0-9a-f]+)", "\n".join(block[:2])).group(1), 16)
+
+    # Each pattern the linker echoes, and whether a section follows it before the next.
+    patterns, matched = [], set()
+    for line in block:
+        if line.startswith(" *") and not line.startswith(" *fill*"):
+            patterns.append(line.strip())
+        elif line.startswith(" .text") and patterns:
+            matched.add(patterns[-1])
+    unmatched = [p for p in patterns if p not in matched]
+    check(len(patterns) == len(listed), f"{len(listed)} patterns in {script_path}, {len(patterns)} in the map")
+    check(len(unmatched) <= MOST_UNMATCHED * len(patterns),
+          f"{len(unmatched)} of the {len(patterns)} sections listed are not in the program "
+          f"(e.g. {unmatched[:3]}): run src/dist/startup_order.py")
+    check(size > 64 * 1024, f"{SECTION} holds only {size} bytes")
+    text = "\n".join(block)
+    for name in EVERY_RUN:
+        check(re.search(r"^\s+0x[0-9a-f]+\s+" + re.escape(name), text, re.M) is not None,
+              f"{name} is not in {SECTION}")
+    for f in failures:
+        print("FAIL:", f)
+    print(f"{len(patterns) - len(unmatched)} of {len(patterns)} sections listed laid out together, {size} bytes")
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
