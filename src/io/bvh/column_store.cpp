@@ -11,19 +11,31 @@
 
 namespace keyrot {
 
-column_store::column_store(std::size_t width)
+namespace {
+
+/// Frames a block: 2 MiB of values, within [64, 4096] frames; but a take
+/// shorter than that in one block that never fills (a small file then
+/// allocates, zeroes and writes nothing more than its values).
+std::size_t block_frames(std::size_t width, std::size_t frames) {
+    const std::size_t block = std::clamp<std::size_t>((std::size_t{1} << 18) / width, 64, 4096);
+    return frames < block ? frames + 1 : block;
+}
+
+}  // namespace
+
+column_store::column_store(std::size_t width, std::size_t frames)
     : width_(width),
-      block_(std::clamp<std::size_t>((std::size_t{1} << 18) / width, 64, 4096)),
+      block_(block_frames(width, frames)),
       filling_(width * block_),
       cached_(width, SIZE_MAX),
-      cache_(width * block_),
-      file_(std::tmpfile()) {}
+      cache_(width * block_) {}
 
 column_store::~column_store() {
     if (file_) std::fclose(file_);
 }
 
 void column_store::flush() {
+    if (frames_ == block_) file_ = std::tmpfile();  // the first block written: a take longer than one
     if (!file_) {
         held_.insert(held_.end(), filling_.begin(), filling_.end());
         return;

@@ -11,10 +11,12 @@ namespace keyrot {
 /// file (unlinked at once) in blocks of a few thousand frames, so that
 /// memory does not grow with the take: a block of every channel is
 /// gathered, then written; a value is read back with its channel's block.
-/// Where no temporary file can be made, the blocks stay in memory.
+/// The file is made when the first block is written; where none can be
+/// made, the blocks stay in memory.
 class column_store {
 public:
-    explicit column_store(std::size_t width);
+    /// `frames`: as many as the take states (the reader refuses more).
+    column_store(std::size_t width, std::size_t frames);
     column_store(const column_store&) = delete;
     column_store& operator=(const column_store&) = delete;
     ~column_store();
@@ -43,7 +45,7 @@ private:
     std::vector<double> filling_;       // the block being gathered, channel after channel
     std::vector<std::size_t> cached_;   // each channel's block in cache_
     std::vector<double> cache_;
-    std::FILE* file_;
+    std::FILE* file_ = nullptr;
     std::vector<double> held_;  // the written blocks, without a temporary file
 };
 

@@ -12,7 +12,7 @@
 namespace keyrot {
 
 track_store::track_store(std::size_t width)
-    : width_(width), filling_(width * block_), file_(std::tmpfile()) {}
+    : width_(width), filling_(width * block_) {}
 
 track_store::~track_store() {
     if (file_) std::fclose(file_);
@@ -24,6 +24,7 @@ void track_store::push(const double* row) {
 }
 
 void track_store::flush() {
+    if (total_ == block_) file_ = std::tmpfile();  // the first block written: more rows than one holds
     if (!file_) {
         held_.insert(held_.end(), filling_.begin(), filling_.end());
         return;

@@ -11,8 +11,8 @@ namespace keyrot {
 /// Rows of `width` numbers, appended track after track, read back frame
 /// after frame across the tracks. Kept in a temporary file (unlinked at
 /// once) in blocks of rows; a track's block is read back when its rows are
-/// reached, so memory is a block per track. Where no temporary file can be
-/// made, the blocks stay in memory.
+/// reached, so memory is a block per track. The file is made when the
+/// first block is written; where none can be made, the blocks stay in memory.
 class track_store {
 public:
     explicit track_store(std::size_t width);
@@ -47,7 +47,7 @@ private:
     std::vector<double> filling_;              // the block being gathered
     std::vector<std::size_t> cached_;          // per track, its block in cache_
     std::vector<std::vector<double>> cache_;  // per track, a block
-    std::FILE* file_;
+    std::FILE* file_ = nullptr;
     std::vector<double> held_;  // the written blocks, without a temporary file
 };
 

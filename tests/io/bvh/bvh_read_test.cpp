@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <iterator>
 #include <map>
 #include <sstream>
+#include <string>
 
 #include "io/bvh/bvh_read.hpp"
 #include "io/bvh/bvh_write.hpp"
@@ -103,6 +106,33 @@ TEST_CASE("BVH: a take that does not hold the frames its header states is an err
     }
 }
 
+/// The descriptors this process has open.
+std::size_t open_descriptors() {
+    return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator("/proc/self/fd"), {}));
+}
+
+TEST_CASE("BVH: a take within one block makes no temporary file; a longer one comes back across the file's blocks") {
+    // One channel: blocks of 4,096 frames.
+    for (const std::size_t frames : {std::size_t{3}, std::size_t{10000}}) {
+        std::string text = "HIERARCHY\nROOT Hips\n{\n  OFFSET 0 0 0\n  CHANNELS 1 Zrotation\n}\nMOTION\nFrames: " +
+                           std::to_string(frames) + "\nFrame Time: 0.04\n";
+        for (std::size_t f = 0; f < frames; ++f) text += std::to_string(f % 360) + "\n";
+        CAPTURE(frames);
+        const std::size_t before = open_descriptors();
+        std::istringstream in(text);
+        const auto reader = make_bvh_reader(in, take_options());
+        const reading_result r = read_all(*reader);
+        CHECK(r.error.empty());
+        CHECK(open_descriptors() == before + (frames > 4096 ? 1 : 0));  // the temporary file, held while reading
+        REQUIRE(r.keys.size() == frames);
+        bool in_order = true;
+        for (std::size_t f = 0; f < frames; ++f)
+            in_order = in_order && r.keys[f].second.frame == static_cast<double>(f) &&
+                       r.keys[f].second.values[0] == static_cast<double>(f % 360);
+        CHECK(in_order);
+    }
+}
+
 /// A BVH output row: time, rotation, position.
 table_row bvh_row(double time, quat q, vec3 position) {
     table_row s;
@@ -153,7 +183,9 @@ TEST_CASE("bvh_output: tracks that do not make the same frames for every joint a
 }
 
 TEST_CASE("track_store: rows pushed track after track come back frame after frame, across blocks") {
-    // Three tracks of 2,500 rows: blocks of rows in the file, and the one being filled.
+    // Three tracks of 2,500 rows: blocks of rows in the file (made with the
+    // first block written), and the one being filled.
+    const std::size_t before = open_descriptors();
     track_store store(2);
     const std::size_t tracks = 3, rows = 2500;
     for (std::size_t t = 0; t < tracks; ++t) {
@@ -161,8 +193,10 @@ TEST_CASE("track_store: rows pushed track after track come back frame after fram
         for (std::size_t i = 0; i < rows; ++i) {
             const double row[2] = {static_cast<double>(t), static_cast<double>(i)};
             store.push(row);
+            if (t == 0 && i == 0) CHECK(open_descriptors() == before);
         }
     }
+    CHECK(open_descriptors() == before + 1);
     REQUIRE(store.tracks() == tracks);
     bool same = true;
     for (std::size_t i = 0; i < rows; ++i)
