@@ -129,19 +129,18 @@ def main():
         if wanted and i not in seen:
             seen.add(i)
             order.append(i)
-    patterns, size = [], 0
+    patterns = {}  # (ordered)
     for i in order:
         p = pattern(sections[i][2], sections[i][3])
-        if p and p not in patterns:
-            patterns.append(p)
-            size += sections[i][1]
+        if p:
+            patterns.setdefault(p, sections[i][1])
     with open(OUT, "w", encoding="utf-8") as f:
-        f.write("/* Written by src/dist/startup_order.py: the code a small run executes,\n"
-                f"   laid out together ({len(patterns)} sections, {size} bytes when written). */\n")
+        f.write("/* Written by src/dist/startup_order.py (run it again rather than edit):\n"
+                "   the code small runs of keyrot execute, laid out together. */\n")
         f.write("SECTIONS {\n  .text.startup_path : {\n")
         f.writelines(f"    {p}\n" for p in patterns)
         f.write("  }\n} INSERT BEFORE .text;\n")
-    print(f"{OUT}: {len(patterns)} sections, {size} bytes")
+    print(f"{OUT}: {len(patterns)} sections, {sum(patterns.values())} bytes")
 
 
 if __name__ == "__main__":
