@@ -2,9 +2,12 @@
 """The code a small run executes is laid out together at the front of the
 program (src/dist/startup.ld; docs/design.md, "Start-up"), and the list
 still names the code there is: checked in the link map of the build.
+Skipped (77) for a program built by another toolchain than the list was
+written for, whose functions and C library objects have other names.
 
-    startup_layout_test.py BUILD/keyrot.map SRC/dist/startup.ld
+    startup_layout_test.py BUILD/keyrot BUILD/keyrot.map SRC/dist/startup.ld
 """
+import os
 import re
 import sys
 
@@ -24,8 +27,17 @@ def check(ok, what):
 
 
 def main():
-    map_path, script_path = sys.argv[1], sys.argv[2]
-    listed = [line.strip() for line in open(script_path, encoding="utf-8") if line.strip().startswith("*")]
+    binary, map_path, script_path = sys.argv[1], sys.argv[2], sys.argv[3]
+    sys.dont_write_bytecode = True  # (nothing written into the sources)
+    sys.path.insert(0, os.path.dirname(os.path.abspath(script_path)))
+    from startup_order import toolchain  # the list's own reading of it
+    script = open(script_path, encoding="utf-8").read()
+    written_for = re.search(r"Toolchain: (.*?) \*/", script)
+    if not written_for or written_for.group(1) != toolchain(binary):
+        print(f"{script_path} was written for {written_for.group(1) if written_for else 'another toolchain'}, "
+              f"this keyrot built by {toolchain(binary)}: skipped")
+        sys.exit(77)
+    listed = [line.strip() for line in script.split("\n") if line.strip().startswith("*")]
     lines = open(map_path, encoding="utf-8", errors="replace").read().split("\n")
     start = next((i for i, line in enumerate(lines) if line.strip() == SECTION or line.startswith(SECTION + " ")),
                  None)

@@ -89,6 +89,13 @@ def executed(binary, command, tmp):
     return addresses
 
 
+def toolchain(binary):
+    """The compilers that built `binary`, as its .comment section names them
+    (the list's names of functions and of the C library's objects are theirs)."""
+    dump = subprocess.run(["readelf", "-p", ".comment", binary], capture_output=True, text=True).stdout
+    return "; ".join(re.findall(r"^\s*\[\s*[0-9a-f]+\]\s+(.*\S)\s*$", dump, re.M))
+
+
 def pattern(name, input_file):
     """A linker script input-section pattern for the section, or None."""
     archive = re.match(r"^(.*)\((.*)\)$", input_file)
@@ -136,7 +143,8 @@ def main():
             patterns.setdefault(p, sections[i][1])
     with open(OUT, "w", encoding="utf-8") as f:
         f.write("/* Written by src/dist/startup_order.py (run it again rather than edit):\n"
-                "   the code small runs of keyrot execute, laid out together. */\n")
+                "   the code small runs of keyrot execute, laid out together.\n"
+                f"   Toolchain: {toolchain(binary)} */\n")
         f.write("SECTIONS {\n  .text.startup_path : {\n")
         f.writelines(f"    {p}\n" for p in patterns)
         f.write("  }\n} INSERT BEFORE .text;\n")
