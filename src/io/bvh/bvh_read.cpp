@@ -365,7 +365,8 @@ private:
 /// joint after another), kept in a temporary file.
 class bvh_keys final : public key_reader {
 public:
-    bvh_keys(std::istream& in, const read_options& ro) : frames_(in, ro), columns_(frames_.width(), frames_.header().frames) {
+    bvh_keys(std::istream& in, const read_options& ro)
+        : frames_(in, ro), columns_(frames_.width(), frames_.header().frames) {
         row_.resize(frames_.width());
     }
 

@@ -13,9 +13,9 @@ namespace keyrot {
 
 namespace {
 
-/// Frames a block: 2 MiB of values, within [64, 4096] frames; but a take
-/// shorter than that in one block that never fills (a small file then
-/// allocates, zeroes and writes nothing more than its values).
+/// Frames a block: 2 MiB of values, within [64, 4096] frames. A take
+/// shorter than that gets a block one frame longer than itself, which never
+/// fills: nothing is written, no file made, no more than its values zeroed.
 std::size_t block_frames(std::size_t width, std::size_t frames) {
     const std::size_t block = std::clamp<std::size_t>((std::size_t{1} << 18) / width, 64, 4096);
     return frames < block ? frames + 1 : block;
