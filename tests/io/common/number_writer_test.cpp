@@ -56,6 +56,13 @@ TEST_CASE("the shortest form is laid out exactly as fmt's \"{}\"") {
         same_as_fmt(v);
     for (double p = 1; p < 1e18; p *= 10)  // whole numbers: the integer path up to 1e15
         for (double v : {p - 1, p, p + 1, -p, 1 - p}) same_as_fmt(v);
+    // Every count of significant digits (1 to 17) with the decimal point at
+    // every place before, within and after them.
+    const std::string digits = "12345678901234567";
+    for (std::size_t count = 1; count <= digits.size(); ++count)
+        for (int point = -20; point <= 20; ++point)
+            for (const char* sign : {"", "-"})
+                same_as_fmt(std::stod(fmt::format("{}0.{}e{}", sign, digits.substr(0, count), point)));
     for (double v = 0; v < 1e6; ++v) same_as_fmt(v);  // frame numbers: every digit count up to 6 and its shift
     for (double v = 0; v < 1e8; v += 997) {  // every digit in every place of both 8-digit halves
         same_as_fmt(v);
