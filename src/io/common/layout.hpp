@@ -67,7 +67,10 @@ struct write_options {
 
 /// A rotation's values in column order, angles in the output unit.
 struct rotation_values {
-    std::array<double, 16> v{};
+    // Only the first `size` are set: one of these is made for every row
+    // written, and zeroing all 16 (a microcoded `rep stos`) cost more than
+    // filling them.
+    std::array<double, 16> v;
     std::size_t size = 0;
     bool gimbal_lock = false;
 };
