@@ -12,8 +12,9 @@
 // `resample` of the same rows. First of all, the floor: the 1M-frame job
 // against keyrot_floor (the same input parsed by keyrot's reader and as
 // many numbers printed, with no math, on two threads: with std::to_chars,
-// and with keyrot's number writer) and the scipy script, taking turns, and
-// a summary line of the ratios.
+// and with keyrot's number writer), the same job with squad and with matrix
+// output, and the scipy script, taking turns, and a summary line of the
+// ratios.
 //
 // Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor]
 #include <fmt/format.h>
@@ -218,15 +219,23 @@ int main(int argc, char** argv) {
             {{keyrot, "resample", track, "-o", dir + "/out.csv", "--rep", "axis-angle"}},
             {{KEYROT_FLOOR, track, dir + "/floor_out.csv", rows, columns, "to_chars"}},
             {{KEYROT_FLOOR, track, dir + "/floor_keyrot_out.csv", rows, columns, "keyrot"}}};
+        // The same job with squad, and with matrix output (9 numbers a row, not 4).
+        commands.push_back({{keyrot, "resample", track, "-o", dir + "/out_squad.csv", "--rep", "axis-angle", "--method",
+                             "squad"}});
+        commands.push_back({{keyrot, "resample", track, "-o", dir + "/out_matrix.csv", "--rep", "matrix"}});
         if (!python.empty()) commands.push_back({{python, script, track, dir + "/out_scipy.csv"}});
         const auto r = repeat(commands, runs);
         print_row("keyrot, 1M frames", r[0], frames);
         print_row("floor, std::to_chars (same turns)", r[1], frames);
         print_row("floor, keyrot's writer", r[2], frames);
-        if (!python.empty()) print_row("scipy script", r[3], frames);
-        fmt::print("floor summary: keyrot / to_chars floor {:.2f}, keyrot / keyrot-writer floor {:.2f}{}\n",
+        print_row("keyrot --method squad", r[3], frames);
+        print_row("keyrot --rep matrix", r[4], frames);
+        if (!python.empty()) print_row("scipy script", r[5], frames);
+        fmt::print("floor summary: keyrot / to_chars floor {:.2f}, keyrot / keyrot-writer floor {:.2f}{}; "
+                   "squad / keyrot {:.2f}, matrix / keyrot {:.2f}\n",
                    r[0].median_s / r[1].median_s, r[0].median_s / r[2].median_s,
-                   python.empty() ? "" : fmt::format(", scipy / keyrot {:.1f}", r[3].median_s / r[0].median_s));
+                   python.empty() ? "" : fmt::format(", scipy / keyrot {:.1f}", r[5].median_s / r[0].median_s),
+                   r[3].median_s / r[0].median_s, r[4].median_s / r[0].median_s);
     }
     if (only == "floor") return 0;
     const input inputs[] = {{200000}, {200000, digits::numpy}, {800000}, {1000000, digits::shortest, 25}};
