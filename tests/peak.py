@@ -1,25 +1,29 @@
-"""Peak resident memory of a keyrot run, measured from outside (wait4)."""
+"""Peak resident memory of a keyrot run, measured from outside by GNU time."""
 import os
+import re
 import subprocess
 import sys
+import tempfile
 
-# A child's peak memory counts what it was forked from: keyrot is started
-# from a bare Python, not from the test's own with numpy loaded.
-PEAK = ("import os, sys\n"
-        "pid = os.posix_spawn(sys.argv[1], sys.argv[1:], os.environ,\n"
-        "                     file_actions=[(os.POSIX_SPAWN_OPEN, 1, os.devnull, os.O_WRONLY, 0)])\n"
-        "_, status, usage = os.wait4(pid, 0)\n"
-        "print(os.waitstatus_to_exitcode(status), usage.ru_maxrss)\n")
+# Linux counts into a child's peak the memory of the process it was started
+# from (a Python started it with 8 MB or more, which hid any smaller peak):
+# GNU time, 1 MB, starts keyrot and writes its status and peak to a file.
+TIME = "/usr/bin/time"
 
 
 def peak_kb(keyrot, args, cwd=None):
     """Status and peak resident memory (KB) of `keyrot args` (standard output discarded)."""
     # (AddressSanitizer holds freed memory back to catch its reuse: not here.)
     asan = ":".join(filter(None, [os.environ.get("ASAN_OPTIONS"), "quarantine_size_mb=0"]))
-    out = subprocess.run([sys.executable, "-S", "-c", PEAK, keyrot] + args, capture_output=True, check=True,
-                         cwd=cwd, env=dict(os.environ, ASAN_OPTIONS=asan))
-    status, kb = out.stdout.split()
-    return int(status), int(kb)
+    with tempfile.NamedTemporaryFile("r") as report:
+        subprocess.run([TIME, "-f", "%x %M", "-o", report.name, keyrot] + args, stdout=subprocess.DEVNULL,
+                       stderr=subprocess.DEVNULL, cwd=cwd, env=dict(os.environ, ASAN_OPTIONS=asan))
+        text = report.read()
+    # The last line is ours; before it, "Command exited with non-zero status N" or
+    # "Command terminated by signal N", where %x gives 0.
+    status, kb = text.split()[-2:]
+    signal = re.search(r"terminated by signal (\d+)", text)
+    return -int(signal.group(1)) if signal else int(status), int(kb)
 
 
 if __name__ == "__main__":
