@@ -129,10 +129,10 @@ def main():
     # (but Intel's transactional ones), and its vDSO set-up.
     variants = re.compile(r"^(.*libc\.a)\(((?:str|mem|stp|wcs|wmem)[a-z]*)-[a-z0-9_-]+\.o\)$")
     families = {m.groups() for i in order if (m := variants.match(sections[i][3]))}
+    vdso_setup = tuple(f"libc.a({member})" for member in VDSO_SETUP)
     for i, (_, _, _, input_file) in enumerate(sections):
         m = variants.match(input_file)
-        wanted = (m and m.groups() in families and "-rtm" not in input_file) or input_file.endswith(
-            tuple(f"libc.a({member})" for member in VDSO_SETUP))
+        wanted = (m and m.groups() in families and "-rtm" not in input_file) or input_file.endswith(vdso_setup)
         if wanted and i not in seen:
             seen.add(i)
             order.append(i)

@@ -16,7 +16,7 @@
 // output, and the scipy script, taking turns, and a summary line of the
 // ratios.
 //
-// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor]
+// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor|start-up]
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <fcntl.h>
