@@ -68,6 +68,27 @@ quat squad_control(quat prev, quat cur, quat next) noexcept;
 
 class segment_curve;
 
+/// A squad segment's keys (as the path signed them) and control points:
+/// all its curve needs, small enough to hand to another thread with the
+/// segment's frames (track_resampler's squad_frame_sink).
+struct squad_keys {
+    double t0 = 0, t1 = 0;
+    quat q0, q1, s0, s1;
+};
+
+/// Squad's curve between two keys, set up once: Shoemake's
+/// slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)).
+class squad_curve {
+public:
+    explicit squad_curve(const squad_keys& k) noexcept : arc_(k.q0, k.q1), control_arc_(k.s0, k.s1) {}
+    quat at(double h) const noexcept;
+
+private:
+    friend class segment_curve;
+    squad_curve() = default;
+    slerp_segment arc_, control_arc_;
+};
+
 /// A cubic track whose spline's equations do not settle (steps near 180
 /// degrees between keys of very uneven spacing: scipy's iteration fails there too).
 struct spline_error : error {
@@ -83,6 +104,8 @@ public:
     /// much as a few frames: make it once, and only for a segment with a
     /// frame inside.
     segment_curve curve() const noexcept;
+    /// squad's keys and control points (for method squad only).
+    squad_keys squad() const noexcept { return {t0, t1, q0, q1, s0_, s1_}; }
 
 private:
     friend class segment_builder;
@@ -108,7 +131,8 @@ private:
     friend class segment;
     explicit segment_curve(const segment& keys) noexcept : keys_(keys) {}
     segment keys_;
-    slerp_segment arc_, control_arc_;  // slerp, squad: q0 to q1; squad: s0 to s1
+    slerp_segment arc_;  // slerp: q0 to q1
+    squad_curve squad_;
 };
 
 /// Turns a track's keys, as they arrive, into segments: the sign of each key

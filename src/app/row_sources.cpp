@@ -113,7 +113,8 @@ public:
     }
     void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
                      const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
-        resampler_.emplace(of(own), euler, carried, [row](const sample& s) { row.frame(s); });
+        row_.emplace(row);
+        resampler_.emplace(of(own), euler, carried, [this](const sample& s) { row_->frame(s); }, row_->squad_frames());
         track_ = name;
         first_.reset();
     }
@@ -177,6 +178,7 @@ private:
     resample_options opts_;
     bool method_given_;
     std::string source_;
+    std::optional<row_sink> row_;
     std::optional<track_resampler> resampler_;
     std::string track_;
     std::optional<location> first_;  // the track's first key, which a spline_error names

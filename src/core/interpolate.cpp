@@ -71,10 +71,12 @@ quat squad_control(quat prev, quat cur, quat next) noexcept {
     return cur * exp(-0.25 * sum);
 }
 
+quat squad_curve::at(double h) const noexcept { return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h)); }
+
 segment_curve segment::curve() const noexcept {
     segment_curve c(*this);
-    if (how_ == method::slerp || how_ == method::squad) c.arc_ = slerp_segment(q0, q1);
-    if (how_ == method::squad) c.control_arc_ = slerp_segment(s0_, s1_);
+    if (how_ == method::slerp) c.arc_ = slerp_segment(q0, q1);
+    if (how_ == method::squad) c.squad_ = squad_curve(squad());
     return c;
 }
 
@@ -82,8 +84,7 @@ quat segment_curve::at(double h) const noexcept {
     switch (keys_.how_) {
         case method::slerp: return arc_.at(h);
         case method::nlerp: return nlerp(keys_.q0, keys_.q1, h);
-        // Shoemake's squad: slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)).
-        case method::squad: return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h));
+        case method::squad: return squad_.at(h);
         case method::step: return keys_.q0;
         case method::cubic: return keys_.cubic_.at(h);
         case method::cubicspline: {
@@ -151,8 +152,9 @@ motion segment_curve::rates(double h) const noexcept {
             // q = P exp(g phi_C / 2): P and S the inner slerps (constant body
             // rates wp, ws), C = P* S, g = 2h(1 - h). phi_C's derivatives from
             // C's motion, then the product's.
-            const vec3 wp = (1 / dt) * arc_.rotation_vector(), ws = (1 / dt) * control_arc_.rotation_vector();
-            const quat C = conjugate(arc_.at(h)) * control_arc_.at(h);
+            const slerp_segment &arc = squad_.arc_, &control_arc = squad_.control_arc_;
+            const vec3 wp = (1 / dt) * arc.rotation_vector(), ws = (1 / dt) * control_arc.rotation_vector();
+            const quat C = conjugate(arc.at(h)) * control_arc.at(h);
             const vec3 phi = 2.0 * log(C), wp_in_c = rotate(conjugate(C), wp);
             const vec3 wc = ws - wp_in_c, ac = cross(wc, wp_in_c);
             const mat3 jinv = inverse_rate_matrix(phi);

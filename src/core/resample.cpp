@@ -112,7 +112,7 @@ template class value_channel<vec3>;
 template class value_channel<morph_weights>;
 
 track_resampler::track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, channels carried,
-                                 frame_sink emit)
+                                 frame_sink emit, squad_frame_sink* squad_frames)
     : opts_(opts),
       builder_(opts.how, opts.way, seq),
       emit_(std::move(emit)),
@@ -120,7 +120,10 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
       translation_(opts, opts.translation_how.value_or(opts.how), carried.translation),
       scale_(opts, opts.scale_how.value_or(opts.how), carried.scale),
       weights_(opts, opts.weights_how.value_or(opts.how), carried.weights > 0),
-      rates_(opts.velocity || opts.acceleration) {}
+      rates_(opts.velocity || opts.acceleration) {
+    // Frames with rates or other channels wait here for them, in order.
+    squad_frames_ = opts.how == method::squad && !vectors_ && !rates_ ? squad_frames : nullptr;
+}
 
 void track_resampler::add(const key& k) {
     if (!started_) {
@@ -168,6 +171,11 @@ void track_resampler::frames_of(const segment& s) {
     // Dense keys (motion capture at 120 Hz, say) leave most segments without
     // a frame inside: they never set up a curve.
     if (!in_segment()) return;
+    if (squad_frames_) {
+        squad_frames_->keys(s.squad());
+        for (; in_segment(); ++next_frame_) squad_frames_->frame(next_frame_, time());
+        return;
+    }
     const segment_curve curve = s.curve();
     for (; in_segment(); ++next_frame_) out(next_frame_, curve.at((time() - s.t0) / (s.t1 - s.t0)));
 }

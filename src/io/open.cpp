@@ -38,12 +38,15 @@ public:
     piped_table(format f, const std::optional<std::string>& path, std::ostream& out, const table_info& info,
                 const write_options& opts, warnings& warn)
         : sink_(path, out, opts.commit), writer_(make_writer(f, sink_.text(), info, opts, warn)),
-          rows_(*writer_, sink_, detail::formatting_threads()) {}
+          rows_(*writer_, sink_, detail::formatting_threads()),
+          sign_free_(sign_free(opts)) {}
     void begin_track(const std::string& name, channels carried, const track_interpolation&) override {
         rows_.begin_track(name, carried);
     }
     void row(const table_row& s) override { rows_.row(s); }
     void frame(const sample& s) override { rows_.frame(s); }
+    /// Squad frames skip the sign chain: only where the sign changes nothing written.
+    squad_frame_sink* squad_frames() override { return sign_free_ ? &rows_ : nullptr; }
     void finish() override {
         rows_.finish();
         writer_->finish();
@@ -54,6 +57,7 @@ private:
     detail::chunked_output sink_;
     std::unique_ptr<table_writer> writer_;
     detail::row_pipeline rows_;
+    bool sign_free_;
 };
 
 /// --euler-continuous: each row's Euler angles the ones nearest the row's

@@ -35,6 +35,18 @@ std::array<double, 4> from_quat_order(std::array<double, 4> v, quat_order order)
     return {v[3], v[0], v[1], v[2]};
 }
 
+bool sign_free(const write_options& opts) noexcept {
+    switch (opts.representation) {
+        case rep::axis_angle:
+        case rep::rotvec:
+        case rep::matrix:
+        case rep::matrix4: return true;
+        case rep::quat:
+        case rep::euler: return false;
+    }
+    return false;
+}
+
 rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts,
                           const std::optional<std::array<double, 3>>& euler) {
     rotation_values out;

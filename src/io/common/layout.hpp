@@ -79,6 +79,12 @@ struct rotation_values {
 rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts,
                           const std::optional<std::array<double, 3>>& euler = std::nullopt);
 
+/// True where values_of gives q's and -q's values the same bits (q and -q
+/// are one rotation): axis-angle, rotation vectors and matrices, which
+/// turn w >= 0 exactly or multiply components in pairs. Not quaternions,
+/// nor Euler angles (their atan2 of negated pairs may differ in the last bit).
+bool sign_free(const write_options& opts) noexcept;
+
 /// Appends v in the shortest form that reads back to the same double, or
 /// rounded to `precision` decimals without trailing zeros: append_number(s,
 /// 0.1 + 0.2, {}) appends "0.30000000000000004"; (s, 2.50, 3) appends "2.5".

@@ -20,6 +20,8 @@
 #include "io/common/chunked_output.hpp"
 #include "io/common/table_writer.hpp"
 #include "keyrot/error.hpp"
+#include "keyrot/interpolate.hpp"
+#include "keyrot/resample.hpp"
 
 namespace keyrot::detail {
 
@@ -30,7 +32,10 @@ namespace keyrot::detail {
 /// whole batches with its own row_writer and the texts are put out in batch
 /// order; JSON rows go through the one writer, on one thread. Errors of the
 /// formatting threads come back from the next call, or from finish().
-class row_pipeline {
+/// Squad frames come as their segment's keys and their times: the
+/// formatting threads work out their rotations, which would leave the
+/// reading thread with three slerps a frame.
+class row_pipeline final : public squad_frame_sink {
 public:
     row_pipeline(table_writer& writer, chunked_output& out, unsigned threads)
         : writer_(writer), out_(out), threads_(threads) {}
@@ -56,6 +61,25 @@ public:
         if (alone(s)) return pack(s, true);
         add_full(table_row{s});
     }
+    void keys(const squad_keys& k) override {
+        squad_ = k;
+        squad_index_ = packed_row::none;
+        inline_curve_.reset();
+    }
+    void frame(double frame, double time) override {
+        if (workers_.empty()) {
+            if (!inline_curve_) inline_curve_.emplace(squad_);
+            sample s;
+            s.time = time, s.frame = frame, s.rotation = inline_curve_->at(squad_h(squad_, time));
+            return inline_row(table_row{s});
+        }
+        if (squad_index_ == packed_row::none) {  // the keys' first frame in this batch
+            squad_index_ = static_cast<std::uint32_t>(batch_.squads.size());
+            batch_.squads.push_back(squad_);
+        }
+        batch_.rows.push_back({time, frame, {}, packed_row::squad | squad_index_, true, true});
+        if (batch_.rows.size() == batch_rows) hand_over();
+    }
     void finish() {
         if (workers_.empty()) return;
         hand_over();
@@ -74,10 +98,12 @@ private:
     };
     /// A row as it waits in a batch: its rotation, time and frame, or where it is in full.
     struct packed_row {
-        static constexpr std::uint32_t none = UINT32_MAX;
+        static constexpr std::uint32_t none = UINT32_MAX, squad = 1u << 31;
         double time, frame;
         quat rotation;
-        std::uint32_t full;  // none, or its index in batch::full (fewer than batch_rows)
+        // none; its index in batch::full (fewer than batch_rows); or a squad
+        // frame, its rotation to be worked out: squad | its keys' index in batch::squads
+        std::uint32_t full;
         bool has_frame, has_time;
 
         table_row unpacked() const {
@@ -95,11 +121,12 @@ private:
         std::vector<double> weights;  // their morph weights, one after another
         std::vector<frame_rates> rates;  // their angular velocities and accelerations, likewise
         std::vector<track_begin> begins;
+        std::vector<squad_keys> squads;  // the squad frames' segments
 
         /// Empty, its memory kept: already mapped, unlike a new vector's.
         void clear() {
             resumed.reset();
-            rows.clear(), full.clear(), weights.clear(), rates.clear(), begins.clear();
+            rows.clear(), full.clear(), weights.clear(), rates.clear(), begins.clear(), squads.clear();
         }
     };
     struct worker {
@@ -160,6 +187,7 @@ private:
             spare_.pop_back();
         }
         batch_.number = ++batches_;
+        squad_index_ = packed_row::none;
         if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
         changed_.notify_all();
     }
@@ -207,6 +235,8 @@ private:
         if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->carried);
         std::size_t next_begin = 0, weights = 0, rates = 0;
         const bool weighted = !b.weights.empty() || !b.rates.empty();
+        std::optional<squad_curve> curve;  // of b.squads[curve_of]
+        std::uint32_t curve_of = packed_row::none;
         for (std::size_t i = 0; i <= b.rows.size(); ++i) {
             for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
                 writer.begin_track(b.begins[next_begin].name, b.begins[next_begin].carried);
@@ -214,6 +244,12 @@ private:
             const packed_row& p = b.rows[i];
             if (p.full == packed_row::none) {
                 writer.row(p.unpacked());
+            } else if (p.full & packed_row::squad) {
+                const std::uint32_t keys = p.full & ~packed_row::squad;
+                if (keys != curve_of) curve.emplace(b.squads[keys]), curve_of = keys;
+                table_row r = p.unpacked();
+                r.rotation = curve->at(squad_h(b.squads[keys], p.time));
+                writer.row(r);
             } else if (!weighted || (b.full[p.full].weights.empty() && !b.full[p.full].rates)) {
                 writer.row(b.full[p.full]);
             } else {
@@ -227,12 +263,18 @@ private:
         }
     }
 
+    /// A squad frame's place in its segment, as resample works it out.
+    static double squad_h(const squad_keys& k, double time) { return (time - k.t0) / (k.t1 - k.t0); }
+
     table_writer& writer_;
     chunked_output& out_;
     unsigned threads_;
     std::size_t inline_rows_ = 0;
     batch batch_;
     std::optional<track_begin> current_;
+    squad_keys squad_;                            // the squad frames' segment
+    std::uint32_t squad_index_ = packed_row::none;  // its index in batch_.squads, once there
+    std::optional<squad_curve> inline_curve_;     // its curve, for frames formatted here
     std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
     std::vector<batch> spare_;  // formatted, for the next batches, so that no row lands on a fresh page

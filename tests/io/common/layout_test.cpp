@@ -1,7 +1,9 @@
 #include "io/common/layout.hpp"
 
 #include <doctest/doctest.h>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -49,4 +51,34 @@ TEST_CASE("values of a rotation in each representation and unit") {
     CHECK(v.v[11] == 3);
     CHECK(v.v[15] == 1);
     CHECK(std::fabs(v.v[1] + 1) <= 1e-15);  // m01 = -sin 90
+}
+
+TEST_CASE("sign_free: a representation's values are q's and -q's bit for bit") {
+    // resample hands squad frames to the formatting threads, unsigned, only for these.
+    std::vector<quat> qs = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 0, 1}, {-0.0, 0.6, 0, 0.8}, {0.0, -0.6, 0.8, 0},
+                            {std::sqrt(0.5), 0, 0, -std::sqrt(0.5)}};
+    std::uint64_t state = 12345;
+    const auto uniform = [&state] {  // (a fixed generator: the same quaternions everywhere)
+        state = state * 6364136223846793005u + 1442695040888963407u;
+        return static_cast<double>(state >> 11) * 0x1p-53 * 2 - 1;
+    };
+    for (int i = 0; i < 20000; ++i) qs.push_back(normalized(quat{uniform(), uniform(), uniform(), uniform()}));
+    const auto bits = [](const rotation_values& r) {
+        std::vector<std::uint64_t> b;
+        for (std::size_t i = 0; i < r.size; ++i) b.push_back(std::bit_cast<std::uint64_t>(r.v[i]));
+        return b;
+    };
+    for (const rep r : {rep::axis_angle, rep::rotvec, rep::matrix, rep::matrix4, rep::quat, rep::euler}) {
+        write_options o;
+        o.representation = r;
+        o.euler = parse_euler_seq("ZYX");
+        std::size_t same = 0;
+        for (const quat& q : qs) same += bits(values_of(q, std::nullopt, o)) == bits(values_of(-q, std::nullopt, o));
+        CAPTURE(to_string(r));
+        if (sign_free(o)) {
+            CHECK(same == qs.size());
+        } else {
+            CHECK(same < qs.size());
+        }
+    }
 }
