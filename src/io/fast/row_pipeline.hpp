@@ -90,7 +90,7 @@ public:
     }
 
 private:
-    static constexpr std::size_t inline_limit = 4096, batch_rows = 4096, max_batches = 6;
+    static constexpr std::size_t inline_limit = 4096, batch_rows = 4096, max_batches = 6, max_parked = 1;
     struct track_begin {
         std::size_t before_row;
         std::string name;
@@ -128,6 +128,10 @@ private:
             resumed.reset();
             rows.clear(), full.clear(), weights.clear(), rates.clear(), begins.clear(), squads.clear();
         }
+    };
+    struct parked_text {
+        std::size_t number;
+        std::string text;
     };
     struct worker {
         std::unique_ptr<table_writer> own;  // formats into text; none: the one writer, straight out
@@ -200,22 +204,46 @@ private:
         try {
             for (batch b; take(b);) {
                 format(b, w);
-                if (!w.own) continue;
-                {
-                    std::unique_lock lock(mutex_);
-                    changed_.wait(lock, [&] { return written_ == b.number || failure_; });
-                    if (failure_) return;
-                }
-                out_.put(w.text);  // this batch's turn: no other thread writes now
-                const std::lock_guard lock(mutex_);
-                ++written_;
-                changed_.notify_all();
+                if (w.own && !put_in_turn(b.number, w.text)) return;
             }
         } catch (...) {
             const std::lock_guard lock(mutex_);
             if (!failure_) failure_ = std::current_exception();
             changed_.notify_all();
         }
+    }
+    /// Puts out batch `number`'s text in its turn, then the parked texts
+    /// that follow it. Formatted before its turn, the text is parked (while
+    /// fewer than max_parked are) and `text` left another buffer: the
+    /// thread goes on to the next batch rather than waiting for one that
+    /// may be off its core (as one of three busy threads on two cores
+    /// often is, with squad or matrix output). False after another thread failed.
+    bool put_in_turn(std::size_t number, std::string& text) {
+        std::unique_lock lock(mutex_);
+        if (written_ != number && parked_.size() < max_parked) {
+            parked_.push_back({number, std::move(text)});
+            text.clear();
+            if (!texts_.empty()) std::swap(text, texts_.back()), texts_.pop_back();
+            return true;
+        }
+        changed_.wait(lock, [&] { return written_ == number || failure_; });
+        if (failure_) return false;
+        lock.unlock();
+        out_.put(text);  // this batch's turn: no other thread writes now
+        lock.lock();
+        for (++written_;; ++written_) {
+            const auto next = std::find_if(parked_.begin(), parked_.end(),
+                                           [this](const parked_text& p) { return p.number == written_; });
+            if (next == parked_.end()) break;
+            std::string parked = std::move(next->text);
+            parked_.erase(next);
+            lock.unlock();
+            out_.put(parked);  // (which leaves it an empty buffer)
+            lock.lock();
+            texts_.push_back(std::move(parked));
+        }
+        changed_.notify_all();
+        return true;
     }
     bool take(batch& b) {
         std::unique_lock lock(mutex_);
@@ -277,6 +305,8 @@ private:
     std::optional<squad_curve> inline_curve_;     // its curve, for frames formatted here
     std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
+    std::vector<parked_text> parked_;  // formatted before their turn
+    std::vector<std::string> texts_;   // buffers for the texts parked next
     std::vector<batch> spare_;  // formatted, for the next batches, so that no row lands on a fresh page
     std::mutex mutex_;
     std::condition_variable changed_;
