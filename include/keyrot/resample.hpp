@@ -115,7 +115,8 @@ extern template class value_channel<morph_weights>;
 /// next translation, scale and weights key) are known. Frame k has time k / fps,
 /// computed afresh, never accumulated. At a key time the rotation is that
 /// key's; quaternion signs are continuous from frame to frame, starting
-/// from the first key's sign. The caller checks the range with
+/// from the first key's sign (not where frames go to a squad_frame_sink,
+/// whose consumer has no use for signs). The caller checks the range with
 /// check_frame_range.
 class track_resampler {
 public:

@@ -121,7 +121,8 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
       scale_(opts, opts.scale_how.value_or(opts.how), carried.scale),
       weights_(opts, opts.weights_how.value_or(opts.how), carried.weights > 0),
       rates_(opts.velocity || opts.acceleration) {
-    // Frames with rates or other channels wait here for them, in order.
+    // Only frames of a rotation alone go there: rates, translations, scales
+    // and weights are worked out here, frame by frame.
     squad_frames_ = opts.how == method::squad && !vectors_ && !rates_ ? squad_frames : nullptr;
 }
 
