@@ -68,6 +68,10 @@ quat squad_control(quat prev, quat cur, quat next) noexcept;
 
 class segment_curve;
 
+/// Where `time` falls between keys at t0 and t1: the h every frame (and
+/// every channel's value) is evaluated at, wherever that happens.
+inline double segment_fraction(double t0, double t1, double time) noexcept { return (time - t0) / (t1 - t0); }
+
 /// A squad segment's keys (as the path signed them) and control points:
 /// all its curve needs, small enough to hand to another thread with the
 /// segment's frames (track_resampler's squad_frame_sink).

@@ -40,7 +40,7 @@ using frame_sink = std::function<void(const sample&)>;
 /// consumer that works them out itself, later and on other threads (a
 /// squad frame costs three slerps, more than the frame's trip there). It
 /// takes a segment's keys, then each of that segment's frames: its rotation
-/// is squad_curve(keys).at((time - t0) / (t1 - t0)), the bits resample
+/// is squad_curve(keys).at(segment_fraction(t0, t1, time)), the bits resample
 /// would give. Such frames skip the sign chain (each frame's quaternion
 /// nearest the one before), which needs every rotation in order: only a
 /// consumer whose output is the same for q and -q may take them.

@@ -49,7 +49,7 @@ void check_frame_range(const key& first, const key& last, const std::string& tra
 
 vec3 channel_between(method how, double ta, const vec3& a, const vec3& out_a, double tb, const vec3& b, const vec3& in_b,
                      double time) {
-    const double h = (time - ta) / (tb - ta);
+    const double h = segment_fraction(ta, tb, time);
     switch (how) {
         case method::step: return a;
         case method::cubicspline: {
@@ -63,7 +63,7 @@ vec3 channel_between(method how, double ta, const vec3& a, const vec3& out_a, do
 
 morph_weights channel_between(method how, double ta, const morph_weights& a, const morph_weights& out_a, double tb,
                               const morph_weights& b, const morph_weights& in_b, double time) {
-    const double h = (time - ta) / (tb - ta);
+    const double h = segment_fraction(ta, tb, time);
     morph_weights w(a.size());
     switch (how) {
         case method::step: return a;
@@ -178,7 +178,7 @@ void track_resampler::frames_of(const segment& s) {
         return;
     }
     const segment_curve curve = s.curve();
-    for (; in_segment(); ++next_frame_) out(next_frame_, curve.at((time() - s.t0) / (s.t1 - s.t0)));
+    for (; in_segment(); ++next_frame_) out(next_frame_, curve.at(segment_fraction(s.t0, s.t1, time())));
 }
 
 void track_resampler::rated_frames_of(const segment& s, bool at_start) {
@@ -189,7 +189,7 @@ void track_resampler::rated_frames_of(const segment& s, bool at_start) {
     const segment_curve curve = s.curve();
     if (at_start) rates_now_ = curve.rates(0), out(next_frame_, s.q0), ++next_frame_;
     for (; time() <= end; ++next_frame_) {
-        const double h = (time() - s.t0) / (s.t1 - s.t0);
+        const double h = segment_fraction(s.t0, s.t1, time());
         rates_now_ = curve.rates(h);
         out(next_frame_, curve.at(h));
     }

@@ -70,7 +70,7 @@ public:
         if (workers_.empty()) {
             if (!inline_curve_) inline_curve_.emplace(squad_);
             sample s;
-            s.time = time, s.frame = frame, s.rotation = inline_curve_->at(squad_h(squad_, time));
+            s.time = time, s.frame = frame, s.rotation = inline_curve_->at(segment_fraction(squad_.t0, squad_.t1, time));
             return inline_row(table_row{s});
         }
         if (squad_index_ == packed_row::none) {  // the keys' first frame in this batch
@@ -276,7 +276,7 @@ private:
                 const std::uint32_t keys = p.full & ~packed_row::squad;
                 if (keys != curve_of) curve.emplace(b.squads[keys]), curve_of = keys;
                 table_row r = p.unpacked();
-                r.rotation = curve->at(squad_h(b.squads[keys], p.time));
+                r.rotation = curve->at(segment_fraction(b.squads[keys].t0, b.squads[keys].t1, p.time));
                 writer.row(r);
             } else if (!weighted || (b.full[p.full].weights.empty() && !b.full[p.full].rates)) {
                 writer.row(b.full[p.full]);
@@ -290,9 +290,6 @@ private:
             if (!w.own) out_.maybe_flush();
         }
     }
-
-    /// A squad frame's place in its segment, as resample works it out.
-    static double squad_h(const squad_keys& k, double time) { return (time - k.t0) / (k.t1 - k.t0); }
 
     table_writer& writer_;
     chunked_output& out_;
