@@ -1,7 +1,6 @@
 #pragma once
 // How output rows get formatted, on other threads once there are many, and
 // written out: what open_table (io/open.hpp) puts a table through.
-#include <algorithm>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -90,7 +89,7 @@ public:
     }
 
 private:
-    static constexpr std::size_t inline_limit = 4096, batch_rows = 4096, max_batches = 6, max_parked = 1;
+    static constexpr std::size_t inline_limit = 4096, batch_rows = 4096, max_batches = 6;
     struct track_begin {
         std::size_t before_row;
         std::string name;
@@ -212,18 +211,18 @@ private:
             changed_.notify_all();
         }
     }
-    /// Puts out batch `number`'s text in its turn, then the parked texts
-    /// that follow it. Formatted before its turn, the text is parked (while
-    /// fewer than max_parked are) and `text` left another buffer: the
-    /// thread goes on to the next batch rather than waiting for one that
-    /// may be off its core (as one of three busy threads on two cores
-    /// often is, with squad or matrix output). False after another thread failed.
+    /// Puts out batch `number`'s text in its turn, then any parked text
+    /// that follows. Formatted before its turn, the text is parked (unless
+    /// another is) and `text` left another buffer: the thread goes on to the
+    /// next batch rather than waiting for one that may be off its core (as
+    /// one of three busy threads on two cores often is, with squad or matrix
+    /// output). False after another thread failed.
     bool put_in_turn(std::size_t number, std::string& text) {
         std::unique_lock lock(mutex_);
-        if (written_ != number && parked_.size() < max_parked) {
-            parked_.push_back({number, std::move(text)});
+        if (written_ != number && !parked_) {
+            parked_ = parked_text{number, std::move(text)};
+            std::swap(text, parked_buffer_);
             text.clear();
-            if (!texts_.empty()) std::swap(text, texts_.back()), texts_.pop_back();
             return true;
         }
         changed_.wait(lock, [&] { return written_ == number || failure_; });
@@ -231,16 +230,14 @@ private:
         lock.unlock();
         out_.put(text);  // this batch's turn: no other thread writes now
         lock.lock();
-        for (++written_;; ++written_) {
-            const auto next = std::find_if(parked_.begin(), parked_.end(),
-                                           [this](const parked_text& p) { return p.number == written_; });
-            if (next == parked_.end()) break;
-            std::string parked = std::move(next->text);
-            parked_.erase(next);
+        // (while one is put out, the next may be parked: the loop)
+        for (++written_; parked_ && parked_->number == written_; ++written_) {
+            std::string parked = std::move(parked_->text);
+            parked_.reset();
             lock.unlock();
             out_.put(parked);  // (which leaves it an empty buffer)
             lock.lock();
-            texts_.push_back(std::move(parked));
+            parked_buffer_ = std::move(parked);
         }
         changed_.notify_all();
         return true;
@@ -302,8 +299,8 @@ private:
     std::optional<squad_curve> inline_curve_;     // its curve, for frames formatted here
     std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
-    std::vector<parked_text> parked_;  // formatted before their turn
-    std::vector<std::string> texts_;   // buffers for the texts parked next
+    std::optional<parked_text> parked_;  // formatted before its turn
+    std::string parked_buffer_;          // what the thread that parks next goes on with
     std::vector<batch> spare_;  // formatted, for the next batches, so that no row lands on a fresh page
     std::mutex mutex_;
     std::condition_variable changed_;
