@@ -13,8 +13,8 @@
 // against keyrot_floor (the same input parsed by keyrot's reader and as
 // many numbers printed, with no math, on two threads: with std::to_chars,
 // and with keyrot's number writer), the same job with squad and with matrix
-// output, and the scipy script, taking turns, and a summary line of the
-// ratios.
+// output (and the floor of matrix rows), and the scipy script, taking turns,
+// and a summary line of the ratios.
 //
 // Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor|start-up]
 #include <fmt/format.h>
@@ -223,6 +223,9 @@ int main(int argc, char** argv) {
         commands.push_back({{keyrot, "resample", track, "-o", dir + "/out_squad.csv", "--rep", "axis-angle", "--method",
                              "squad"}});
         commands.push_back({{keyrot, "resample", track, "-o", dir + "/out_matrix.csv", "--rep", "matrix"}});
+        // Matrix rows' own floor (frame, time and 9 numbers): the bytes it
+        // writes are twice the main job's, and so is the printing.
+        commands.push_back({{KEYROT_FLOOR, track, dir + "/floor_matrix_out.csv", rows, "11", "keyrot"}});
         if (!python.empty()) commands.push_back({{python, script, track, dir + "/out_scipy.csv"}});
         const auto r = repeat(commands, runs);
         print_row("keyrot, 1M frames", r[0], frames);
@@ -230,12 +233,15 @@ int main(int argc, char** argv) {
         print_row("floor, keyrot's writer", r[2], frames);
         print_row("keyrot --method squad", r[3], frames);
         print_row("keyrot --rep matrix", r[4], frames);
-        if (!python.empty()) print_row("scipy script", r[5], frames);
+        print_row("floor, keyrot's writer, matrix rows", r[5], frames);
+        if (!python.empty()) print_row("scipy script", r[6], frames);
         fmt::print("floor summary: keyrot / to_chars floor {:.2f}, keyrot / keyrot-writer floor {:.2f}{}; "
-                   "squad / keyrot {:.2f}, matrix / keyrot {:.2f}\n",
+                   "squad / keyrot {:.2f}, matrix / keyrot {:.2f} (its floors: {:.2f} apart; "
+                   "matrix / its keyrot-writer floor {:.2f})\n",
                    r[0].median_s / r[1].median_s, r[0].median_s / r[2].median_s,
-                   python.empty() ? "" : fmt::format(", scipy / keyrot {:.1f}", r[5].median_s / r[0].median_s),
-                   r[3].median_s / r[0].median_s, r[4].median_s / r[0].median_s);
+                   python.empty() ? "" : fmt::format(", scipy / keyrot {:.1f}", r[6].median_s / r[0].median_s),
+                   r[3].median_s / r[0].median_s, r[4].median_s / r[0].median_s, r[5].median_s / r[2].median_s,
+                   r[4].median_s / r[5].median_s);
     }
     if (only == "floor") return 0;
     const input inputs[] = {{200000}, {200000, digits::numpy}, {800000}, {1000000, digits::shortest, 25}};
