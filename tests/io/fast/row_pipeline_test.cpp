@@ -52,10 +52,11 @@ protected:
     }
 };
 
-/// 100,000 rows through a pipeline of two formatting threads into `out`:
+/// 100,000 rows through a pipeline of two formatting threads into `buffer`:
 /// they must come out whole and in order. Batches hold 4,096 rows after the
 /// first 4,096 (formatted before the threads start).
-void check_rows_in_order(std::ostream& out, const std::function<std::string()>& written, const row_delay& delay) {
+void check_rows_in_order(std::stringbuf& buffer, const row_delay& delay) {
+    std::ostream out(&buffer);
     std::string expected;
     {
         detail::chunked_output sink(std::nullopt, out, commit_mode{});
@@ -71,7 +72,7 @@ void check_rows_in_order(std::ostream& out, const std::function<std::string()>& 
         rows.finish();
         sink.finish();
     }
-    CHECK(written() == expected);
+    CHECK(buffer.str() == expected);
 }
 
 }  // namespace
@@ -81,20 +82,18 @@ TEST_CASE("row_pipeline: batches formatted before their turn are put out in turn
     // other thread runs ahead.
     for (const long long slow : {4096LL * 3 + 7, 4096LL * 8}) {
         CAPTURE(slow);
-        std::ostringstream out;
-        check_rows_in_order(out, [&] { return out.str(); },
-                            [slow](long long frame) { return milliseconds(frame == slow ? 30 : 0); });
+        std::stringbuf buffer;
+        check_rows_in_order(buffer, [slow](long long frame) { return milliseconds(frame == slow ? 30 : 0); });
     }
 }
 
 TEST_CASE("row_pipeline: a batch parked while a parked one is put out is not left behind") {
-    // Each batch takes about as long to format as to write (half as long to
-    // a quarter longer, and it still happens): a thread parks its batch,
+    // Each batch takes about as long to format as to write (from half as
+    // long to half again as long, it still happens): a thread parks its batch,
     // formats the next, and parks that too while the other thread puts out
     // the first. Were that one left behind, both threads would wait for it
     // for ever (ctest's timeout).
     slow_buffer buffer;
-    std::ostream out(&buffer);
-    check_rows_in_order(out, [&] { return buffer.str(); },
+    check_rows_in_order(buffer,
                         [](long long frame) { return frame % 4096 == 0 ? slow_buffer::write_time : milliseconds(0); });
 }
