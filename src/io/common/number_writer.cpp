@@ -153,17 +153,18 @@ char* write_with_point(char* out, const significand_digits& digits, int point) n
 /// "{}" uses), laid out exactly as "{}" lays them out: fixed notation for
 /// decimal exponents in [-4, 16), else d.ddde+XX. Writing the layout here
 /// rather than through fmt's general formatter takes a third off the
-/// writers' hot path (tests/io/common/layout_test.cpp compares it with fmt). `out`
-/// needs 40 bytes of room.
+/// writers' hot path (tests/io/common/number_writer_test.cpp compares it
+/// with fmt). `out` needs 40 bytes of room.
 char* write_shortest(char* out, double v) noexcept {
     // Signs of rotation components come at random: no branch to mispredict.
     *out = '-';
     out += std::signbit(v);
     v = std::fabs(v);
-    // An internal of fmt: pinned to the versions tests/io/common/layout_test.cpp has
-    // compared digit for digit with fmt's own "{}".
+    // An internal of fmt: pinned to the versions
+    // tests/io/common/number_writer_test.cpp has compared digit for digit
+    // with fmt's own "{}".
     static_assert(FMT_VERSION >= 90000 && FMT_VERSION < 100000,
-                  "fmt::detail::dragonbox::to_decimal is fmt 9's: run the layout tests before taking another fmt");
+                  "fmt::detail::dragonbox::to_decimal is fmt 9's: run the number writer's tests before taking another fmt");
     const auto decimal = fmt::detail::dragonbox::to_decimal(v);
     const significand_digits digits(decimal.significand);
     const int count = digits.count();
