@@ -766,14 +766,19 @@ def validate(files):
 
 
 # ---------------------------------------------------------------- bad files
+def small_glb(path, joints, seed):
+    """A .glb of `joints` joints, joint 1 turned by three random keys at 0, 0.5 and 1 s."""
+    b = G.Builder()
+    b.skeleton(joints)
+    b.animation([{"node": 1, "path": "rotation", "times": [0.0, 0.5, 1.0],
+                  "values": random_quats(np.random.default_rng(seed), 3)}])
+    b.write(path, "glb")
+
+
 def bad_cases(work):
     """(name, bytes or a function writing files, expected piece of the message)."""
-    b = G.Builder()
-    b.skeleton(3)
-    b.animation([{"node": 1, "path": "rotation", "times": [0.0, 0.5, 1.0],
-                  "values": random_quats(np.random.default_rng(1), 3)}])
     base = os.path.join(work, "base.glb")
-    b.write(base, "glb")
+    small_glb(base, 3, 1)
     good = open(base, "rb").read()
     text_len = struct.unpack_from("<I", good, 12)[0]
     doc = json.loads(good[20:20 + text_len])
@@ -801,6 +806,21 @@ def bad_cases(work):
 
     sampler = ["animations", 0, "samplers", 0]
     out_acc = doc["animations"][0]["samplers"][0]["output"]
+    in_acc = doc["animations"][0]["samplers"][0]["input"]
+
+    def unstored(acc, count, sparse=False):
+        """Accessor `acc` with no bufferView (all zeros) and `count` elements;
+        with `sparse`, one substitute (index 0: the first byte of time 0)."""
+        def change(d):
+            a = d["accessors"][acc]
+            a.pop("bufferView")
+            a["count"] = count
+            if sparse:
+                a["sparse"] = {"count": 1, "values": {"bufferView": doc["accessors"][out_acc]["bufferView"]},
+                               "indices": {"bufferView": doc["accessors"][in_acc]["bufferView"],
+                                           "componentType": G.UNSIGNED_BYTE}}
+        return change
+
     cases = [
         ("magic.glb", b"glTx" + good[4:], "not a GLB file"),
         ("version.glb", good[:4] + struct.pack("<I", 1) + good[8:], "GLB version 1: expected 2"),
@@ -812,8 +832,19 @@ def bad_cases(work):
         ("draco.glb", with_json(set_(["extensionsRequired"], ["KHR_draco_mesh_compression"])),
          "extensionsRequired[0]: \"KHR_draco_mesh_compression\""),
         ("meshopt.glb", with_json(set_(["extensionsRequired"], ["EXT_meshopt_compression"])), "EXT_meshopt_compression"),
-        ("accessor.glb", with_json(set_(["accessors", out_acc, "count"], 1000)),
-         f"animations[0].samplers[0].output: accessor {out_acc}: 1000 elements from byte 0 read past the end of bufferView"),
+        ("accessor.glb", with_json(set_(["accessors", out_acc, "byteOffset"], 40)),
+         f"animations[0].samplers[0].output: accessor {out_acc}: 3 elements from byte 40 read past the end of bufferView"),
+        # Counts that claim more than the file holds are refused before
+        # anything is allocated (2^40 elements would not fit in memory;
+        # 2^62 four-component elements overflowed the size).
+        ("stored.glb", with_json(set_(["accessors", in_acc, "count"], 2**40)),
+         f"samplers[0].input: accessor {in_acc}: 1099511627776 elements from byte 0 read past the end"),
+        ("zeros.glb", with_json(unstored(out_acc, 2**40)),
+         "samplers[0].output: 1099511627776 elements for 3 key times: expected 3"),
+        ("sparse.glb", with_json(unstored(out_acc, 2**62, sparse=True)),
+         "samplers[0].output: 4611686018427387904 elements for 3 key times: expected 3"),
+        ("zero_times.glb", with_json(unstored(in_acc, 2**40)),
+         "samplers[0].input: 1099511627776 key times, 0 of them stored (the rest are 0): expected strictly increasing"),
         ("view.glb", with_json(set_(["bufferViews", doc["accessors"][out_acc]["bufferView"], "byteLength"], 10**6)),
          f"bufferViews[{doc['accessors'][out_acc]['bufferView']}]: bytes "),
         ("times.glb", times_bytes([0.0, 0.5, 0.5]), "samplers[0].input: time 0.5 s at key 2 is not after"),
@@ -879,6 +910,46 @@ def check_bad(work):
             print(f"ok: bad {name}: {err.strip()}")
 
 
+def check_unstored(work):
+    """Accessors with no bufferView (zeros but for sparse substitutes) that
+    are valid read as their stored twins: key times 0, 0.5, 1 given as two
+    substitutes over a zero, and rotations given wholly as substitutes."""
+    global checks
+    stored = os.path.join(work, "stored_twin.glb")
+    small_glb(stored, 2, 2)
+    doc, binary = G.parts(stored)
+    binary = bytearray(binary)
+    s = doc["animations"][0]["samplers"][0]
+
+    def view(data):
+        binary.extend(b"\0" * (-len(binary) % 4))
+        doc["bufferViews"].append({"buffer": 0, "byteOffset": len(binary), "byteLength": len(data)})
+        binary.extend(data)
+        return len(doc["bufferViews"]) - 1
+
+    times = doc["accessors"][s["input"]]
+    times.pop("bufferView")
+    times["sparse"] = {"count": 2, "indices": {"bufferView": view(bytes([1, 2])), "componentType": G.UNSIGNED_BYTE},
+                       "values": {"bufferView": view(struct.pack("<2f", 0.5, 1.0))}}
+    rotations = doc["accessors"][s["output"]]
+    old_view = doc["bufferViews"][rotations.pop("bufferView")]
+    start = old_view.get("byteOffset", 0) + rotations.pop("byteOffset", 0)
+    rotations["sparse"] = {"count": 3, "indices": {"bufferView": view(bytes([0, 1, 2])), "componentType": G.UNSIGNED_BYTE},
+                           "values": {"bufferView": view(bytes(binary[start:start + 48]))}}
+    doc["buffers"][0]["byteLength"] = len(binary) + (-len(binary) % 4)
+    unstored = os.path.join(work, "unstored.glb")
+    with open(unstored, "wb") as f:
+        f.write(G.glb(json.dumps(doc).encode(), bytes(binary)))
+    outputs = []
+    for path in (stored, unstored):
+        status, out, _ = run(["convert", path, "--rep", "quat", "--to", "csv"])
+        outputs.append((status, out))
+    if outputs[0][0] != 0 or outputs[1] != outputs[0]:
+        fail(f"unstored accessors: {outputs[1]!r}, expected as {stored}: {outputs[0]!r}")
+    else:
+        checks += 1
+
+
 def main():
     with tempfile.TemporaryDirectory() as work:
         cases = make_cases(work)
@@ -905,6 +976,7 @@ def main():
         check_compact(cases, work, written)
         validate(written)
         check_bad(work)
+        check_unstored(work)
     print(f"gltf_test: {checks} checks, {len(failures)} failures")
     return 1 if failures else 0
 

@@ -42,6 +42,14 @@ struct accessor_kind {
     bool normalized_integers = false;
 };
 
+/// An accessor's count, and how many of its elements the file stores: all
+/// with a bufferView; else its sparse substitutes, the rest being 0. So a
+/// reader can check what the count claims before read_accessor allocates it.
+struct accessor_size {
+    std::size_t count, stored;
+};
+accessor_size size_of_accessor(const gltf_file& file, const gltf_json& index, const std::string& path);
+
 /// The elements of accessor `index` (a JSON value, for its checks), their
 /// components one after another, decoded as the specification says
 /// (byteStride, normalised integers, sparse substitution). `path` names what

@@ -78,24 +78,31 @@ void read_sampler(gltf_file& file, const gltf_json& sampler, const std::string& 
         throw input_error(
             at, fmt::format("interpolation '{}': expected LINEAR, STEP or CUBICSPLINE", excerpt(interpolation)));
     c.how = method_of(interpolation);
+    // Counts are checked before the accessors are read: zeros the file does
+    // not store (an accessor with no bufferView) must not fill the memory.
+    const accessor_size times = size_of_accessor(file, sampler["input"], path + ".input");
+    if (times.count > times.stored + 1)
+        throw input_error(at + ".input", fmt::format("{} key times, {} of them stored (the rest are 0): expected "
+                                                     "strictly increasing times",
+                                                     times.count, times.stored));
     read_accessor(file, sampler["input"], path + ".input", {"SCALAR", false}, c.times);
     for (std::size_t i = 1; i < c.times.size(); ++i)
         if (!(c.times[i] > c.times[i - 1]))
             throw input_error(at + ".input", fmt::format("time {} s at key {} is not after the previous key's {} s: "
                                                          "expected strictly increasing times",
                                                          c.times[i], i, c.times[i - 1]));
-    read_accessor(file, sampler["output"], path + ".output", {rotation ? "VEC4" : weights ? "SCALAR" : "VEC3", true},
-                  c.values);
     const std::size_t per_key = c.how == method::cubicspline ? 3 : 1;
     const char* const spline_note = per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent per key)" : "";
-    if (weights && c.values.size() != c.keys() * per_key * c.width)
+    const std::size_t elements = size_of_accessor(file, sampler["output"], path + ".output").count;
+    if (weights && elements != c.keys() * per_key * c.width)
         throw input_error(at + ".output", fmt::format("{} weights for {} key times of {} morph targets: expected {}{}",
-                                                      c.values.size(), c.keys(), c.width,
-                                                      c.keys() * per_key * c.width, spline_note));
-    if (c.values.size() != c.keys() * per_key * c.width)
-        throw input_error(at + ".output", fmt::format("{} elements for {} key times: expected {}{}",
-                                                      c.values.size() / c.width, c.keys(), c.keys() * per_key,
+                                                      elements, c.keys(), c.width, c.keys() * per_key * c.width,
                                                       spline_note));
+    if (!weights && elements != c.keys() * per_key)
+        throw input_error(at + ".output", fmt::format("{} elements for {} key times: expected {}{}", elements,
+                                                      c.keys(), c.keys() * per_key, spline_note));
+    read_accessor(file, sampler["output"], path + ".output", {rotation ? "VEC4" : weights ? "SCALAR" : "VEC3", true},
+                  c.values);
     if (c.how == method::cubicspline && c.keys() < 2)
         throw input_error(at, "CUBICSPLINE with one key: expected at least two");
     if (rotation)  // glTF stores x, y, z, w; keyrot's order is w, x, y, z
