@@ -28,6 +28,7 @@ import io
 import json
 import math
 import os
+import resource
 import struct
 import subprocess
 import sys
@@ -57,8 +58,11 @@ def fail(msg):
     print("FAIL:", msg)
 
 
-def run(args, stdin=None):
-    p = subprocess.run([KEYROT] + args, input=stdin, capture_output=True)
+def run(args, stdin=None, memory=None):
+    """keyrot's status, output and errors; `memory` caps its address space in bytes."""
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (memory, memory))
+    p = subprocess.run([KEYROT] + args, input=stdin, capture_output=True, preexec_fn=limit if memory else None)
     return p.returncode, p.stdout.decode(), p.stderr.decode()
 
 
@@ -870,6 +874,10 @@ def bad_cases(work):
     cases.append(("short.gltf", json.dumps(gltf_doc).encode(), f"buffers[0]: holds 20 bytes: expected byteLength {len(binary)}"))
     gltf_doc["buffers"][0]["uri"] = "data:application/octet-stream;base64,AAAA*AAA"
     cases.append(("base64.gltf", json.dumps(gltf_doc).encode(), "buffers[0]: uri: expected a base64 data: URI"))
+    # A buffer with no end (a relative name for /dev/zero): its byteLength read, no more.
+    gltf_doc["buffers"][0]["uri"] = os.path.relpath("/dev/zero", work)
+    cases.append(("endless.gltf", json.dumps(gltf_doc).encode(),
+                  "samplers[0].input: time 0 s at key 1 is not after the previous key's 0 s"))
     gltf_doc["buffers"][0]["uri"] = "https://example.com/a.bin"
     cases.append(("remote.gltf", json.dumps(gltf_doc).encode(), "expected a file beside the glTF file"))
     return cases
@@ -894,12 +902,15 @@ def check_bad(work):
         fail(f"big.csv into glTF: status {status}, {err.strip()!r}")
     else:
         checks += 1
+    # AddressSanitizer cannot start in 1 GiB of address space: a sanitizer build goes without the cap.
+    cap = 1 << 30 if run(["--version"], memory=1 << 30)[0] == 0 else None
     for name, data, expected in bad_cases(work):
         path = os.path.join(work, name)
         with open(path, "wb") as f:
             f.write(data)
         target = os.path.join(work, "out.csv")
-        status, out, err = run(["resample", path, "-o", target])
+        # (in 1 GiB: a bad file ends in its error, never in taking the memory, or /dev/zero, it names)
+        status, out, err = run(["resample", path, "-o", target], memory=cap)
         lines = err.strip().split("\n")
         if status != 2 or len(lines) != 1 or expected not in err or not err.startswith(f"keyrot: {path}") or os.path.exists(target):
             fail(f"bad {name}: status {status}, stderr {err.strip()!r}, expected one line with {expected!r}")

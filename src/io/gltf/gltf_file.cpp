@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cctype>
@@ -10,7 +11,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <set>
 #include <tuple>
 
@@ -160,15 +160,17 @@ std::string_view buffer_bytes(gltf_file& file, std::size_t i) {
             throw input_error(
                 at, fmt::format("uri '{}': expected a file beside the glTF file (a relative URI)", excerpt(uri)));
         const std::filesystem::path name = std::filesystem::path(file.directory) / percent_decoded(uri);
+        if (length > file.max_bytes)
+            throw input_error(at, fmt::format("byteLength {}: expected at most {} bytes (--max-bytes N raises the "
+                                              "limit)",
+                                              length, file.max_bytes));
         std::ifstream in(name, std::ios::binary);
         if (!in) throw input_error(at, fmt::format("cannot read '{}'", name.string()));
-        in.seekg(0, std::ios::end);
-        const auto size = static_cast<std::size_t>(std::max<std::streamoff>(0, in.tellg()));
-        if (size > file.max_bytes)
-            throw input_error(at, fmt::format("'{}' holds more than {} bytes (--max-bytes N raises the limit)",
-                                              name.string(), file.max_bytes));
-        in.seekg(0);
-        bytes.assign(std::istreambuf_iterator<char>(in), {});
+        // byteLength bytes and no more: what follows is not the buffer's, and
+        // a name like ../../dev/zero has no end.
+        bytes.resize(length);
+        in.read(bytes.data(), static_cast<std::streamsize>(length));
+        bytes.resize(static_cast<std::size_t>(in.gcount()));
     }
     if (bytes.size() < length)
         throw input_error(at, fmt::format("holds {} bytes: expected byteLength {}", bytes.size(), length));
