@@ -863,6 +863,8 @@ def bad_cases(work):
         ("uint.glb", with_json(set_(["accessors", out_acc, "componentType"], G.UNSIGNED_INT)), "componentType 5125"),
         ("noanim.glb", with_json(lambda d: d.pop("animations")), "no animations"),
         ("nobin.glb", G.glb(json.dumps(doc).encode(), b""), "buffers[0]: no uri, and the file has no GLB BIN chunk"),
+        ("twice.glb", G.glb(json.dumps(doc).replace('"samplers": [{', '"samplers": [{"output": 0, ', 1).encode(), binary),
+         "animations[0].samplers[0]: 'output' appears twice: expected each name once in an object"),
     ]
     # .gltf files whose buffers are bad: missing, short, bad base64.
     gltf_doc = json.loads(json.dumps(doc))

@@ -175,7 +175,7 @@ expect "distinct formats, distinct names" 0 "track.csv
 track.json" -- bash -c "'$keyrot' convert a/track.csv b/track.json --output-dir out && ls out"
 
 # ---- JSON: duplicate names are errors, unknown fields are named
-expect_error "duplicate track" "keyrot: <stdin>: tracks: 'a' appears twice: expected each name once in an object" -- bash -c \
+expect_error "duplicate track" "keyrot: <stdin>:1: tracks: 'a' appears twice: expected each name once in an object" -- bash -c \
     "printf '{\"tracks\": {\"a\": [{\"time\": 0, \"quat\": [1,0,0,0]}], \"a\": [{\"time\": 1, \"quat\": [1,0,0,0]}]}}' | '$keyrot' convert"
 printf '{"keys": [{"time": 0, "quat": [1,0,0,0], "translaton": [1,2,3]}]}' > typo.json
 expect "a misspelt field warns" 0 "keyrot: warning: typo.json: ignoring unknown field 'translaton' (typo.json: keys[0])" -- bash -c \

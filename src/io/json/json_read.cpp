@@ -88,33 +88,56 @@ void check_depth(std::string_view text, std::string_view source, std::size_t fir
 
 /// Refuses a name that appears twice in one object, which nlohmann-json
 /// would let the second replace the first (flat_json declines such text).
+/// The message names the object by its path (tracks.hip.keys[3]), and by
+/// its line where the text is one line (an NDJSON line, say): the parser's
+/// callback does not say where in the text it is.
 class unique_names {
 public:
-    explicit unique_names(std::string_view source) : source_(source) {}
+    unique_names(std::string_view source, std::string_view text, std::size_t first_line)
+        : source_(source), line_(text.find('\n') == std::string_view::npos ? first_line : 0) {}
     bool operator()(int, json::parse_event_t event, json& parsed) {
         switch (event) {
-            case json::parse_event_t::object_start: objects_.emplace_back(); break;
-            case json::parse_event_t::object_end: objects_.pop_back(); break;
+            case json::parse_event_t::object_start: element(), open_.push_back({false}); break;
+            case json::parse_event_t::array_start: element(), open_.push_back({true}); break;
+            case json::parse_event_t::object_end:
+            case json::parse_event_t::array_end: open_.pop_back(); break;
+            case json::parse_event_t::value: element(); break;
             case json::parse_event_t::key: {
-                auto& [names, current] = objects_.back();
-                current = parsed.get<std::string>();
-                if (!names.insert(current).second) {
-                    std::string path;
-                    for (std::size_t i = 0; i + 1 < objects_.size(); ++i) path = join_path(path, objects_[i].second);
-                    throw input_error(where(source_, path.empty() ? "document" : path),
-                                      fmt::format("'{}' appears twice: expected each name once in an object",
-                                                  current.substr(0, 40)));
-                }
+                container& object = open_.back();
+                object.current = parsed.get<std::string>();
+                if (!object.names.insert(object.current).second) throw twice(object.current);
                 break;
             }
-            default: break;
         }
         return true;
     }
 
 private:
+    struct container {
+        bool array;
+        std::size_t elements = 0;       // an array's, so far
+        std::set<std::string> names{};  // an object's, so far
+        std::string current{};          // an object's latest name
+    };
+
+    void element() {
+        if (!open_.empty() && open_.back().array) ++open_.back().elements;
+    }
+
+    input_error twice(const std::string& name) const {
+        std::string path;  // of the innermost object, from the outermost
+        for (std::size_t i = 0; i + 1 < open_.size(); ++i)
+            path = open_[i].array ? fmt::format("{}[{}]", path, open_[i].elements - 1)
+                                  : join_path(path, open_[i].current);
+        const std::string message =
+            fmt::format("'{}' appears twice: expected each name once in an object", name.substr(0, 40));
+        if (!line_) return input_error(where(source_, path.empty() ? "document" : path), message);
+        return input_error(path.empty() ? where(source_, line_) : where(where(source_, line_), path), message);
+    }
+
     std::string_view source_;
-    std::vector<std::pair<std::set<std::string>, std::string>> objects_;  // names so far, the current one
+    std::size_t line_;  // 0: the text has several lines
+    std::vector<container> open_;
 };
 
 /// "source:line:column" of a byte offset, so that an error in a long line
@@ -130,7 +153,7 @@ std::string place_of(std::string_view text, std::size_t byte, std::string_view s
 json parse_json_text(std::string_view text, std::string_view source, std::size_t first_line) {
     check_depth(text, source, first_line);
     try {
-        return json::parse(text.begin(), text.end(), unique_names(source));
+        return json::parse(text.begin(), text.end(), unique_names(source, text, first_line));
     } catch (const json::parse_error& e) {
         if (first_line == 1 && looks_like_utf16(text.substr(0, 4))) throw input_error(std::string(source), utf16_message);
         std::string what = e.what();

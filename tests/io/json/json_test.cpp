@@ -74,6 +74,23 @@ TEST_CASE("JSON errors name the key path and what was expected") {
     CHECK(error_of("42", format::json) == "in: expected a JSON object or array, got number");
 }
 
+TEST_CASE("A name twice in one object is refused, naming the object by its path, and its line on one line") {
+    const auto twice = [](const char* name) {
+        return fmt::format("'{}' appears twice: expected each name once in an object", name);
+    };
+    CHECK(error_of("{\"tracks\": {\"hip\": {\"keys\": [\n{\"time\": 0, \"quat\": [1,0,0,0]},\n"
+                   "{\"time\": 1, \"quat\": {\"w\": 1, \"x\": 0, \"w\": 0}}]}}}",
+                   format::json) == "in: tracks.hip.keys[1].quat: " + twice("w"));
+    CHECK(error_of("[{\"time\": 0, \"quat\": [1,0,0,0]},\n{\"time\": 1, \"time\": 2, \"quat\": [1,0,0,0]}]",
+                   format::json) == "in: [1]: " + twice("time"));
+    CHECK(error_of(R"({"tracks": {"a": [], "a": []}})", format::json) == "in:1: tracks: " + twice("a"));
+    CHECK(error_of("{\"fps\": 24,\n\"fps\": 30, \"keys\": []}", format::json) == "in: document: " + twice("fps"));
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n\n{\"time\": 1, \"time\": 2, \"quat\": [1,0,0,0]}\n",
+                   format::ndjson) == "in:3: " + twice("time"));
+    CHECK(error_of("{\"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1, \"quat\": {\"w\": 1, \"w\": 1}}\n",
+                   format::ndjson) == "in:2: quat: " + twice("w"));
+}
+
 TEST_CASE("JSON errors name the field down to the element, as a JSON path") {
     const auto field_error = [](const std::string& key) {
         return error_of(R"({"keys": [)" + key + "]}", format::json);
