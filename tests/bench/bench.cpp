@@ -9,14 +9,15 @@
 // --baseline, another keyrot binary (say, before a change) runs the same
 // commands in the same turns, and the ratio of the two is printed. Last,
 // `compare` and `info` of 200,000 and 1,000,000 resampled rows, each against
-// `resample` of the same rows. First of all, the floor: the 1M-frame job
+// `resample` of the same rows; a JSON document read whole against the same
+// keys streamed. First of all, the floor: the 1M-frame job
 // against keyrot_floor (the same input parsed by keyrot's reader and as
 // many numbers printed, with no math, on two threads: with std::to_chars,
 // and with keyrot's number writer), the same job with squad and with matrix
 // output (and the floor of matrix rows), and the scipy script, taking turns,
 // and a summary line of the ratios.
 //
-// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor|start-up]
+// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor|start-up|json]
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <fcntl.h>
@@ -151,6 +152,45 @@ std::string cpu_model() {
     return "unknown CPU";
 }
 
+void print_header() { fmt::print("{:<34} {:>10} {:>12} {:>10}\n", "", "median s", "frames/s", "peak RSS"); }
+
+/// One row of the table: median time, frames (or keys) a second, peak RSS.
+void print_row(const std::string& name, const summary& m, std::size_t frames) {
+    fmt::print("{:<34} {:>10.3f} {:>10.2f} M {:>7.1f} MB{}\n", name, m.median_s,
+               static_cast<double>(frames) / m.median_s / 1e6, static_cast<double>(m.peak_kb) / 1024,
+               m.ok ? "" : "  FAILED");
+}
+
+/// A JSON document read whole (a track name with an escape, which only
+/// nlohmann-json reads) against the same keys streamed: the whole read must
+/// stay linear in the keys.
+void json_read_whole(const std::string& keyrot, const std::string& baseline, const std::string& dir, int runs) {
+    const std::string track = dir + "/json_track.csv", streamed = dir + "/streamed.json";
+    const std::size_t keys = 100000;
+    write_track(track, keys);
+    run({keyrot, "convert", track, "-o", streamed, "--rep", "quat"});
+    {
+        // Line by line, as write_track: {..., "keys": [ becomes {..., "tracks": {"café": {"keys": [.
+        std::ifstream in(streamed);
+        std::ofstream out(dir + "/whole.json");
+        std::string line, next;
+        std::getline(in, line);
+        line.replace(line.find("\"keys\": ["), 9, R"("tracks": {"caf\u00e9": {"keys": [)");
+        while (std::getline(in, next)) out << line << '\n', line = next;
+        out << line.substr(0, line.rfind(']') + 1) << "}}}\n";
+    }
+    std::vector<command> commands = {{{keyrot, "convert", streamed, "-o", dir + "/json_out.csv"}},
+                                     {{keyrot, "convert", dir + "/whole.json", "-o", dir + "/json_out.csv"}}};
+    if (!baseline.empty()) commands.push_back({{baseline, "convert", dir + "/whole.json", "-o", dir + "/json_base.csv"}});
+    const auto r = repeat(commands, runs);
+    print_row("JSON of 0.1M keys, streamed", r[0], keys);
+    print_row("the same read whole", r[1], keys);
+    fmt::print("{:<34} {:>10.2f}\n", "  ratio (whole / streamed)", r[1].median_s / r[0].median_s);
+    if (baseline.empty()) return;
+    print_row("baseline, read whole", r[2], keys);
+    fmt::print("{:<34} {:>10.2f}\n", "  ratio (keyrot / baseline)", r[1].median_s / r[2].median_s);
+}
+
 /// A 10-key file, start to end, against a program that does nothing, in the
 /// same turns (and against `baseline`, if given).
 void start_up(const std::string& keyrot, const std::string& baseline, const std::string& dir, int runs) {
@@ -186,22 +226,22 @@ int main(int argc, char** argv) {
         start_up(keyrot, baseline, dir, runs);
         return 0;
     }
+    if (only == "json") {
+        print_header();
+        json_read_whole(keyrot, baseline, dir, runs);
+        return 0;
+    }
     python = find_python(python);
     const std::string script = dir + "/slerp_scipy.py";
     std::ofstream(script) << scipy_script;
 
     fmt::print("keyrot benchmark: {} cores, {}, median of {} runs\n", std::thread::hardware_concurrency(), cpu_model(),
                runs);
-    fmt::print("{:<34} {:>10} {:>12} {:>10}\n", "", "median s", "frames/s", "peak RSS");
+    print_header();
     struct input {
         std::size_t keys;
         digits style = digits::shortest;
         std::size_t density = 1;
-    };
-    const auto print_row = [](const std::string& name, const summary& m, std::size_t frames) {
-        fmt::print("{:<34} {:>10.3f} {:>10.2f} M {:>7.1f} MB{}\n", name, m.median_s,
-                   static_cast<double>(frames) / m.median_s / 1e6, static_cast<double>(m.peak_kb) / 1024,
-                   m.ok ? "" : "  FAILED");
     };
     const auto print_per_million = [](const std::string& what, const summary& m, std::size_t count) {
         fmt::print("{:<34} {:>10.3f}\n", "  per million " + what, m.median_s * 1e6 / static_cast<double>(count));
@@ -300,5 +340,6 @@ int main(int argc, char** argv) {
         print_row("info of them", r[2], frames);
         fmt::print("{:<34} {:>10.2f}\n", "  ratio (info / resample)", r[2].median_s / r[0].median_s);
     }
+    json_read_whole(keyrot, baseline, dir, runs);
     start_up(keyrot, baseline, dir, runs);
 }

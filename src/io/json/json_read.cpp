@@ -90,26 +90,37 @@ void check_depth(std::string_view text, std::string_view source, std::size_t fir
 /// would let the second replace the first (flat_json declines such text).
 /// The message names the object by its path (tracks.hip.keys[3]), and by
 /// its line where the text is one line (an NDJSON line, say): the parser's
-/// callback does not say where in the text it is.
+/// events do not say where in the text they are. A pass of its own over
+/// the text's events (SAX), before the document is built: nlohmann-json
+/// 3.11's parser with a callback looks through a container's members at
+/// the end of each object in it, which is quadratic in a long array of
+/// keys.
 class unique_names {
 public:
     unique_names(std::string_view source, std::string_view text, std::size_t first_line)
         : source_(source), line_(text.find('\n') == std::string_view::npos ? first_line : 0) {}
-    bool operator()(int, json::parse_event_t event, json& parsed) {
-        switch (event) {
-            case json::parse_event_t::object_start: element(), open_.push_back({false}); break;
-            case json::parse_event_t::array_start: element(), open_.push_back({true}); break;
-            case json::parse_event_t::object_end:
-            case json::parse_event_t::array_end: open_.pop_back(); break;
-            case json::parse_event_t::value: element(); break;
-            case json::parse_event_t::key: {
-                container& object = open_.back();
-                object.current = parsed.get<std::string>();
-                if (!object.names.insert(object.current).second) throw twice(object.current);
-                break;
-            }
-        }
+
+    bool null() { return element(); }
+    bool boolean(bool) { return element(); }
+    bool number_integer(json::number_integer_t) { return element(); }
+    bool number_unsigned(json::number_unsigned_t) { return element(); }
+    bool number_float(json::number_float_t, const json::string_t&) { return element(); }
+    bool string(json::string_t&) { return element(); }
+    bool binary(json::binary_t&) { return element(); }
+    bool start_object(std::size_t) { return open(false); }
+    bool start_array(std::size_t) { return open(true); }
+    bool end_object() { return close(); }
+    bool end_array() { return close(); }
+    bool key(json::string_t& name) {
+        container& object = open_.back();
+        object.current = name;
+        if (!object.names.insert(name).second) throw twice(name);
         return true;
+    }
+    /// Throws what the parser found, as parsing into a document would.
+    template <class Exception>
+    bool parse_error(std::size_t, const std::string&, const Exception& e) {
+        throw e;
     }
 
 private:
@@ -120,8 +131,18 @@ private:
         std::string current{};          // an object's latest name
     };
 
-    void element() {
+    bool element() {
         if (!open_.empty() && open_.back().array) ++open_.back().elements;
+        return true;
+    }
+    bool open(bool array) {
+        element();
+        open_.push_back({array});
+        return true;
+    }
+    bool close() {
+        open_.pop_back();
+        return true;
     }
 
     input_error twice(const std::string& name) const {
@@ -153,7 +174,9 @@ std::string place_of(std::string_view text, std::size_t byte, std::string_view s
 json parse_json_text(std::string_view text, std::string_view source, std::size_t first_line) {
     check_depth(text, source, first_line);
     try {
-        return json::parse(text.begin(), text.end(), unique_names(source, text, first_line));
+        unique_names names(source, text, first_line);
+        json::sax_parse(text.begin(), text.end(), &names);
+        return json::parse(text.begin(), text.end());
     } catch (const json::parse_error& e) {
         if (first_line == 1 && looks_like_utf16(text.substr(0, 4))) throw input_error(std::string(source), utf16_message);
         std::string what = e.what();
