@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "ground/text.hpp"
+
 namespace keyrot {
 namespace {
 
@@ -114,14 +116,17 @@ bool flat_json::parse_container(int depth, bool object) {
 
 bool flat_json::parse_string(span& out) {
     const char* const begin = ++p_;
+    unsigned char high = 0;  // any byte past ASCII
     for (; p_ != end_; ++p_) {
         const auto c = static_cast<unsigned char>(*p_);
         if (c == '"') {
             out = {static_cast<std::uint32_t>(begin - begin_), static_cast<std::uint32_t>(p_ - begin)};
             ++p_;
-            return true;
+            // (not UTF-8: nlohmann-json words the error)
+            return (high & 0x80) == 0 || is_valid_utf8(std::string_view(begin, out.size));
         }
-        if (c < 0x20 || c >= 0x7f || c == '\\') return false;  // escapes, UTF-8 and errors: nlohmann-json's
+        if (c < 0x20 || c == '\\') return false;  // escapes and errors: nlohmann-json's
+        high |= c;
     }
     return false;
 }

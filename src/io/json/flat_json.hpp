@@ -2,7 +2,7 @@
 // JSON parsed in place into one flat array, reused from parse to parse:
 // building nlohmann-json's map-based document took three quarters of the
 // time NDJSON input spent. Only what this parser reads exactly as
-// nlohmann-json would is taken: strings of printable ASCII without escapes,
+// nlohmann-json would is taken: strings of UTF-8 without escapes,
 // unique member names (at most 256 to an object), strict JSON numbers,
 // values at most 8 deep. Anything else (including every syntax error) is
 // declined, and the caller asks nlohmann-json, which then also words the

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "ground/text.hpp"
 #include "io/json/flat_json.hpp"
 #include "io/json/json_keys.hpp"
 #include "io/json/json_stream.hpp"
@@ -65,7 +66,7 @@ public:
         return true;
     }
     /// A string without escapes (member names, which need no unescaping),
-    /// taken; none if declined.
+    /// taken; none if declined (an escape, or what is not UTF-8).
     std::optional<std::string> string() {
         if (!take('"')) return std::nullopt;
         for (std::size_t i = at_;; ++i) {
@@ -75,9 +76,10 @@ public:
                 i = at_ + offset;
             }
             const auto c = static_cast<unsigned char>(buf_[i]);
-            if (c == '\\' || c < 0x20 || c >= 0x7f) return decline(), std::nullopt;  // left to the whole reader
+            if (c == '\\' || c < 0x20) return decline(), std::nullopt;  // left to the whole reader
             if (c == '"') {
                 std::string s = buf_.substr(at_, i - at_);
+                if (!is_valid_utf8(s)) return decline(), std::nullopt;
                 at_ = i + 1;
                 return s;
             }

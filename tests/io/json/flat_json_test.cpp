@@ -44,6 +44,8 @@ TEST_CASE("flat_json takes key lines, numbers and literals as nlohmann-json read
              // Halfway cases, the smallest normal and subnormal, the largest double.
              "0.30000000000000004", "2.2250738585072014e-308", "4.9406564584124654e-324", "1.7976931348623157e308",
              "9007199254740993.0000000000000000000001",
+             // UTF-8 and a DEL, which JSON leaves unescaped.
+             "\"caf\xc3\xa9\"", "{\"\xe3\x82\xab\xe3\x83\xa1\xe3\x83\xa9\": \"\xf0\x9f\xa6\xb4\"}", "\"a\x7f\"",
          }) {
         CAPTURE(text);
         CHECK(taken_as_nlohmann(line, text));
@@ -54,7 +56,7 @@ TEST_CASE("flat_json takes key lines, numbers and literals as nlohmann-json read
     CHECK(std::signbit(line.root().number()));
 }
 
-TEST_CASE("flat_json declines escapes, non-ASCII, duplicate names, deep or wide values and every syntax error") {
+TEST_CASE("flat_json declines escapes, what is not UTF-8, duplicate names, deep or wide values and every syntax error") {
     flat_json line;
     const std::string deep = std::string(9, '[') + std::string(9, ']');
     // 257 members: past what it checks for duplicates.
@@ -64,13 +66,16 @@ TEST_CASE("flat_json declines escapes, non-ASCII, duplicate names, deep or wide 
     REQUIRE(line.parse(wide.substr(0, wide.rfind(',')) + "}"));
     for (const std::string& text : std::vector<std::string>{
              // nlohmann-json takes these, and words them or decodes them itself.
-             R"({"track": "a\u0062"})", R"("tab\there")", "\"caf\xc3\xa9\"", R"({"a": 1, "a": 2})", deep, wide,
+             R"({"track": "a\u0062"})", R"("tab\there")", R"({"a": 1, "a": 2})", deep, wide,
+             // Not UTF-8: overlong, a surrogate, cut short, a lone continuation byte, past U+10FFFF, 5 bytes.
+             "\"\xc0\xaf\"", "\"\xed\xa0\x80\"", "\"\xc3\"", "\"\xe3\x82\"", "\"\x80\"", "\"\xf4\x90\x80\x80\"",
+             "\"\xf8\x88\x80\x80\x80\"", "{\"\xff\": 1}",
              "1e999", "-1e999",
              // Syntax errors, which nlohmann-json words.
              "", " ", "01", "-01", "1.", ".5", "+1", "-", "1e", "1e+", "0x10", "1.5.2", "Infinity", "NaN",
              "[1,]", "[,1]", "[1 2]", "{\"a\"}", "{\"a\":}", "{a: 1}", "{\"a\": 1,}", "{\"a\": 1 \"b\": 2}",
              "{'a': 1}", "tru", "nul", "falsey", "\"abc", "\"a\x01\"", "{} x", "[]]", "{}}", "[", "{",
-             "\"a\x7f\"", "\v1",
+             "\v1",
          }) {
         CAPTURE(text);
         CHECK(!line.parse(text));
@@ -91,7 +96,7 @@ TEST_CASE("flat_json against nlohmann-json on random lines, valid and broken") {
     std::mt19937 gen(20261122);
     const std::vector<std::string> numbers = {"0", "-0", "1", "-2.5", "1e3", "6.02E+23", "1e-320", "0.1",
                                               "18446744073709551616", "-7", "3.14159265358979"};
-    const std::vector<std::string> names = {"time", "quat", "a", "", "x y", "track"};
+    const std::vector<std::string> names = {"time", "quat", "a", "", "x y", "track", "caf\xc3\xa9", "\xe3\x82\xab"};
     const auto pick = [&](const std::vector<std::string>& from) {
         return from[std::uniform_int_distribution<std::size_t>(0, from.size() - 1)(gen)];
     };
@@ -122,7 +127,7 @@ TEST_CASE("flat_json against nlohmann-json on random lines, valid and broken") {
             }
         }
     };
-    const std::string bytes = "[]{},:\"-+.eE0123456789 \\tfnu\xc3";
+    const std::string bytes = "[]{},:\"-+.eE0123456789 \\tfnu\xc3\xa9\x82\xed";
     flat_json line;
     int taken = 0, broken_taken = 0;
     for (int n = 0; n < 20000; ++n) {

@@ -265,6 +265,10 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
              R"({"note": {"a": [1, 2, {"b": null}], "c": "x,]} "}, "keys": [)" + k + "], \"after\": [true, false, \"{[\"]}",
              R"({"quat_order": "xyzw", "tracks": {"a": {"quat_order": "wxyz", "tracks": 5, "keys": [)" + k + "]}, \"b\": [" + k2 +
                  "], \"\": [" + k + "]}}",
+             // UTF-8 names and strings, as keyrot writes them (a DEL too, which JSON leaves unescaped)
+             "{\"tracks\": {\"caf\xc3\xa9\": [" + k + "], \"\xe3\x82\xab\xe3\x83\xa1\xe3\x83\xa9\": [" + k2 +
+                 "], \"\xf0\x9f\xa6\xb4\": [" + k + "]}}",
+             "[{\"time\": 0, \"quat\": [1, 0, 0, 0], \"note\": \"\xc3\xa9\x7f\"}]",
          }) {
         CAPTURE(doc);
         const std::string streamed = streamed_keys(doc);
@@ -282,6 +286,10 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
              "\xEF\xBB\xBF[" + k + "]", R"({"note": "\u00e9", "keys": [)" + k + "]}", R"({"tracks": {"\u00e9": [)" + k + "]}}",
              R"({"note": [[[[[[[[[[1]]]]]]]]]], "keys": [)" + k + "]}",
              R"({"tracks": {"a\u0001": [)" + k + "]}}", "42", "\"keys\"", "",
+             // What is not UTF-8 (overlong, a surrogate, cut short, past U+10FFFF): read_json words it.
+             "{\"tracks\": {\"\xc0\xaf\": [" + k + "]}}", "{\"tracks\": {\"\xed\xa0\x80\": [" + k + "]}}",
+             "{\"tracks\": {\"\xc3\": [" + k + "]}}", "{\"tracks\": {\"\xf4\x90\x80\x80\": [" + k + "]}}",
+             "[{\"time\": 0, \"quat\": [1, 0, 0, 0], \"note\": \"\xe3\x82\"}]",
              "[" + k + "]\n" + std::string(1, '\0') + "x", "[" + k + "]" + std::string(1, '\0'),
          }) {
         CAPTURE(doc);
