@@ -904,14 +904,15 @@ def check_bad(work):
         fail(f"big.csv into glTF: status {status}, {err.strip()!r}")
     else:
         checks += 1
-    # AddressSanitizer cannot start in 1 GiB of address space: a sanitizer build goes without the cap.
+    # In 1 GiB of address space, a bad file (even one naming /dev/zero) ends in its
+    # error, never in all the memory. AddressSanitizer cannot start in 1 GiB: a
+    # sanitizer build goes without the cap.
     cap = 1 << 30 if run(["--version"], memory=1 << 30)[0] == 0 else None
     for name, data, expected in bad_cases(work):
         path = os.path.join(work, name)
         with open(path, "wb") as f:
             f.write(data)
         target = os.path.join(work, "out.csv")
-        # (in 1 GiB: a bad file ends in its error, never in taking the memory, or /dev/zero, it names)
         status, out, err = run(["resample", path, "-o", target], memory=cap)
         lines = err.strip().split("\n")
         if status != 2 or len(lines) != 1 or expected not in err or not err.startswith(f"keyrot: {path}") or os.path.exists(target):
