@@ -16,7 +16,79 @@ constexpr std::uint32_t max_members = 256;
 
 bool is_digit(char c) noexcept { return c >= '0' && c <= '9'; }
 
+/// The four hex digits at `at` in `text`, or -1.
+long hex4(std::string_view text, std::size_t at) noexcept {
+    if (at > text.size() || text.size() - at < 4) return -1;
+    long code = 0;
+    for (const char c : text.substr(at, 4)) {
+        const int digit = is_digit(c) ? c - '0' : (c >= 'a' && c <= 'f') ? c - 'a' + 10 : (c >= 'A' && c <= 'F') ? c - 'A' + 10 : -1;
+        if (digit < 0) return -1;
+        code = code * 16 + digit;
+    }
+    return code;
+}
+
+void append_utf8(long code, std::string& out) {
+    const auto byte = [](long b) { return static_cast<char>(b); };
+    if (code < 0x80) {
+        out += byte(code);
+    } else if (code < 0x800) {
+        out += byte(0xc0 | (code >> 6));
+        out += byte(0x80 | (code & 0x3f));
+    } else if (code < 0x10000) {
+        out += byte(0xe0 | (code >> 12));
+        out += byte(0x80 | ((code >> 6) & 0x3f));
+        out += byte(0x80 | (code & 0x3f));
+    } else {
+        out += byte(0xf0 | (code >> 18));
+        out += byte(0x80 | ((code >> 12) & 0x3f));
+        out += byte(0x80 | ((code >> 6) & 0x3f));
+        out += byte(0x80 | (code & 0x3f));
+    }
+}
+
 }  // namespace
+
+bool append_json_string(std::string_view quoted, std::string& out) {
+    const std::size_t start = out.size();
+    unsigned char high = 0;  // any byte past ASCII, not from an escape
+    for (std::size_t i = 0; i < quoted.size(); ++i) {
+        const auto c = static_cast<unsigned char>(quoted[i]);
+        if (c < 0x20 || c == '"') return false;
+        if (c != '\\') {
+            out += static_cast<char>(c);
+            high |= c;
+            continue;
+        }
+        if (++i == quoted.size()) return false;
+        switch (quoted[i]) {
+            case '"': out += '"'; break;
+            case '\\': out += '\\'; break;
+            case '/': out += '/'; break;
+            case 'b': out += '\b'; break;
+            case 'f': out += '\f'; break;
+            case 'n': out += '\n'; break;
+            case 'r': out += '\r'; break;
+            case 't': out += '\t'; break;
+            case 'u': {
+                long code = hex4(quoted, i + 1);
+                i += 4;
+                if (code >= 0xd800 && code <= 0xdbff) {  // a high surrogate: its low one must follow
+                    const long low = quoted.substr(i + 1, 2) == "\\u" ? hex4(quoted, i + 3) : -1;
+                    if (low < 0xdc00 || low > 0xdfff) return false;
+                    code = 0x10000 + ((code - 0xd800) << 10) + (low - 0xdc00);
+                    i += 6;
+                } else if (code < 0 || (code >= 0xdc00 && code <= 0xdfff)) {
+                    return false;
+                }
+                append_utf8(code, out);
+                break;
+            }
+            default: return false;
+        }
+    }
+    return (high & 0x80) == 0 || is_valid_utf8(std::string_view(out).substr(start));
+}
 
 std::string_view flat_json::value::type_name() const noexcept {
     switch (type()) {
@@ -45,6 +117,7 @@ std::optional<flat_json::value> flat_json::value::member(std::string_view name) 
 
 bool flat_json::parse(std::string_view text) {
     items_.clear();
+    decoded_.clear();
     if (text.size() > UINT32_MAX) return false;
     // A key takes about 16 bytes a value: room for that, so that a document
     // is not copied as it grows (untouched room costs no memory).
@@ -123,12 +196,26 @@ bool flat_json::parse_string(span& out) {
             out = {static_cast<std::uint32_t>(begin - begin_), static_cast<std::uint32_t>(p_ - begin)};
             ++p_;
             // (not UTF-8: nlohmann-json words the error)
-            return (high & 0x80) == 0 || is_valid_utf8(std::string_view(begin, out.size));
+            return out.size < decoded_bit && ((high & 0x80) == 0 || is_valid_utf8(std::string_view(begin, out.size)));
         }
-        if (c < 0x20 || c == '\\') return false;  // escapes and errors: nlohmann-json's
+        if (c == '\\') return parse_escaped_string(begin, out);
+        if (c < 0x20) return false;  // nlohmann-json words the error
         high |= c;
     }
     return false;
+}
+
+bool flat_json::parse_escaped_string(const char* begin, span& out) {
+    for (; p_ != end_ && *p_ != '"'; ++p_)  // to the closing quote: a backslash takes the byte after it
+        if (*p_ == '\\' && ++p_ == end_) return false;
+    if (p_ == end_) return false;
+    const std::size_t at = decoded_.size();
+    if (!append_json_string(std::string_view(begin, static_cast<std::size_t>(p_ - begin)), decoded_)) return false;
+    ++p_;
+    const std::size_t size = decoded_.size() - at;
+    if (at > UINT32_MAX || size >= decoded_bit) return false;
+    out = {static_cast<std::uint32_t>(at), static_cast<std::uint32_t>(size) | decoded_bit};
+    return true;
 }
 
 bool flat_json::parse_literal(std::string_view word) {

@@ -2,18 +2,26 @@
 // JSON parsed in place into one flat array, reused from parse to parse:
 // building nlohmann-json's map-based document took three quarters of the
 // time NDJSON input spent. Only what this parser reads exactly as
-// nlohmann-json would is taken: strings of UTF-8 without escapes,
-// unique member names (at most 256 to an object), strict JSON numbers,
-// values at most 8 deep. Anything else (including every syntax error) is
-// declined, and the caller asks nlohmann-json, which then also words the
-// error.
+// nlohmann-json would is taken: strings of UTF-8 (escapes decoded as it
+// decodes them), unique member names (at most 256 to an object), strict
+// JSON numbers, values at most 8 deep. Anything else (including every
+// syntax error) is declined, and the caller asks nlohmann-json, which then
+// also words the error.
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
 namespace keyrot {
+
+/// Appends the text of a JSON string, the bytes between its quotes, with
+/// its escapes decoded as nlohmann-json decodes them (\u surrogate pairs
+/// as one UTF-8 character). False, with `out` partly appended, for what it
+/// refuses: an unknown or cut-short escape, a lone surrogate, a control
+/// character, bytes that are not UTF-8.
+bool append_json_string(std::string_view quoted, std::string& out);
 
 class flat_json {
 public:
@@ -21,8 +29,9 @@ public:
 
 private:
     struct span {  // trivial, for the union below
-        std::uint32_t at, size;  // bytes of the text
+        std::uint32_t at, size;  // bytes of the text, or of decoded_ where size has decoded_bit
     };
+    static constexpr std::uint32_t decoded_bit = std::uint32_t{1} << 31;
     struct item {
         kind type = kind::null;
         std::uint32_t next = 0;  // the parent's next element or member; 0: the last
@@ -48,7 +57,7 @@ public:
         bool is_array() const noexcept { return type() == kind::array; }
         bool is_object() const noexcept { return type() == kind::object; }
         double number() const noexcept { return is_number() ? item().number : 0; }
-        /// The string's bytes (is_string()); they need no unescaping.
+        /// The string's bytes (is_string()), escapes decoded.
         std::string_view string() const noexcept { return is_string() ? json_->bytes(item().text) : std::string_view(); }
         /// Elements of an array, members of an object.
         std::size_t size() const noexcept { return item().container() ? item().size : 0; }
@@ -91,13 +100,18 @@ private:
     bool parse_value(int depth);
     bool parse_container(int depth, bool object);
     bool parse_string(span& out);
+    bool parse_escaped_string(const char* begin, span& out);
     bool parse_number(double& out);
     bool parse_literal(std::string_view word);
     void skip_space() noexcept;
-    std::string_view bytes(span s) const noexcept { return {begin_ + s.at, s.size}; }
+    std::string_view bytes(span s) const noexcept {
+        if (s.size & decoded_bit) return {decoded_.data() + s.at, s.size & ~decoded_bit};
+        return {begin_ + s.at, s.size};
+    }
 
     std::size_t max_values_;
     std::vector<item> items_;
+    std::string decoded_;  // strings with escapes, decoded
     const char* begin_ = nullptr;
     const char* p_ = nullptr;
     const char* end_ = nullptr;

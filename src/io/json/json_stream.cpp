@@ -4,7 +4,6 @@
 // for the rest the caller reads the document whole (read_json).
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -28,8 +27,8 @@ namespace {
 
 /// The document's text, read in blocks and consumed token by token: only
 /// the value being read (a key, a setting) is held, not what came before.
-/// Text it does not take (an escape, a value longer than it holds, what is
-/// not JSON) declines the document: from then on, nothing is taken.
+/// Text it does not take (a value longer than it holds, what is not JSON)
+/// declines the document: from then on, nothing is taken.
 class json_text {
 public:
     /// At most `max_held` bytes of one value are held: a longer one is declined.
@@ -65,10 +64,11 @@ public:
         ++at_;
         return true;
     }
-    /// A string without escapes (member names, which need no unescaping),
-    /// taken; none if declined (an escape, or what is not UTF-8).
+    /// A string (a member name), taken, its escapes decoded; none if
+    /// declined (what nlohmann-json would refuse: the whole reader words it).
     std::optional<std::string> string() {
         if (!take('"')) return std::nullopt;
+        bool escapes = false, escaped = false;  // escaped: the byte after a backslash
         for (std::size_t i = at_;; ++i) {
             if (i == buf_.size()) {
                 const std::size_t offset = i - at_;
@@ -76,10 +76,17 @@ public:
                 i = at_ + offset;
             }
             const auto c = static_cast<unsigned char>(buf_[i]);
-            if (c == '\\' || c < 0x20) return decline(), std::nullopt;  // left to the whole reader
-            if (c == '"') {
-                std::string s = buf_.substr(at_, i - at_);
-                if (!is_valid_utf8(s)) return decline(), std::nullopt;
+            if (escaped) {
+                escaped = false;
+            } else if (c == '\\') {
+                escapes = escaped = true;
+            } else if (c < 0x20) {
+                return decline(), std::nullopt;
+            } else if (c == '"') {
+                const std::string_view quoted(buf_.data() + at_, i - at_);
+                std::string s;
+                if (escapes ? !append_json_string(quoted, s) : (s.assign(quoted), !is_valid_utf8(s)))
+                    return decline(), std::nullopt;
                 at_ = i + 1;
                 return s;
             }
@@ -91,16 +98,24 @@ public:
     std::optional<std::string_view> value() {
         const char first = peek();
         if (declined_) return std::nullopt;
-        if (first == '{') {  // a key, most often: to its first '}', if it holds no other object
+        if (first == '{') {  // a key, most often: to its first '}', if it holds no other object and ends no string
             const auto* begin = buf_.data() + at_;
-            const auto* close = static_cast<const char*>(std::memchr(begin, '}', buf_.size() - at_));
-            if (close && std::count(begin, close, '{') == 1) return take_until(at_ + static_cast<std::size_t>(close - begin) + 1);
+            if (const auto* close = static_cast<const char*>(std::memchr(begin, '}', buf_.size() - at_))) {
+                int opens = 0, quotes = 0, escapes = 0;
+                for (const auto* c = begin; c != close; ++c) {
+                    opens += *c == '{';
+                    quotes += *c == '"';
+                    escapes += *c == '\\';
+                }
+                if (opens == 1 && quotes % 2 == 0 && escapes == 0)
+                    return take_until(at_ + static_cast<std::size_t>(close - begin) + 1);
+            }
         }
         int depth = 0;
-        bool in_string = false;
+        bool in_string = false, escaped = false;  // escaped: the byte after a backslash
         for (std::size_t i = at_;;) {
             // Most characters are digits, letters, signs and points: a look-up each.
-            while (i < buf_.size() && kind_of(buf_[i]) == kind::plain) ++i;
+            while (!escaped && i < buf_.size() && kind_of(buf_[i]) == kind::plain) ++i;
             if (i == buf_.size()) {
                 const std::size_t offset = i - at_;
                 if (!fill()) {
@@ -110,8 +125,16 @@ public:
                 i = at_ + offset;
                 continue;
             }
+            if (escaped) {  // flat_json decodes it, or declines
+                escaped = false;
+                ++i;
+                continue;
+            }
             switch (kind_of(buf_[i])) {
-                case kind::escape: return decline(), std::nullopt;  // flat_json takes no escapes
+                case kind::escape:
+                    if (!in_string) return decline(), std::nullopt;
+                    escaped = true;
+                    break;
                 case kind::quote: in_string = !in_string; break;
                 case kind::open: depth += !in_string; break;
                 case kind::close:

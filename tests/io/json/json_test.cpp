@@ -161,7 +161,8 @@ std::string dump(const std::string& text) {
 
 TEST_CASE("JSON: documents flat_json takes give the keys and messages nlohmann-json's reading gives") {
     // Each document twice: as written, which flat_json takes, and with a
-    // member flat_json declines (an escaped string), which nlohmann-json reads.
+    // member flat_json declines (nested deeper than it reads), which
+    // nlohmann-json reads.
     flat_json flat;
     for (const std::string doc : {
              R"({"keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "rotvec": [0, 0, 1.5], "translation": [1, 2, 3]}]})",
@@ -179,18 +180,22 @@ TEST_CASE("JSON: documents flat_json takes give the keys and messages nlohmann-j
              R"({"quat_order": "wzyx", "keys": []})", R"({"fps": 0, "keys": []})", R"({"fps": "24", "keys": []})",
              R"({"keys": [{"time": 0, "frame": 0, "quat": [1, 0, 0, 0]}]})", R"({"keys": [{"quat": [1, 0, 0, 0]}]})",
              R"({"keys": [{"time": 0, "matrix": [[1, 0, 0], [0, 1, 0]]}]})", R"({"keys": [7]})", R"({"keys": [null]})",
+             // Escapes, decoded: names, a setting, a key's field.
+             R"({"tracks": {"caf\u00e9 \ud83e\uddb4 \"q\" \\ \/": [{"time": 0, "quat": [1, 0, 0, 0]}], "\u0061": []}})",
+             R"({"\u0065uler": "Z\u0059X", "keys": [{"time": 0, "eul\u0065r": [1, 2, 3], "note": "\b\f\n\r\t"}]})",
+             R"({"tracks": {"a": [], "\u0061": []}})",
          }) {
         CAPTURE(doc);
-        const std::string declined = doc.front() == '{' ? "{\"note\": \"\\u00e9\", " + doc.substr(1)
-                                                        : "[{\"note\": \"\\u00e9\", " + doc.substr(2);
-        CHECK(flat.parse(doc) == (doc.find('\\') == std::string::npos));
+        const std::string note = R"("note": [[[[[[[[[1]]]]]]]]], )";
+        const std::string declined = doc.front() == '{' ? "{" + note + doc.substr(1) : "[{" + note + doc.substr(2);
+        CHECK(flat.parse(doc) == (doc.find(R"("a": [], "\u0061")") == std::string::npos));  // (declines names twice)
         CHECK(!flat.parse(declined));
         CHECK(dump(doc) == dump(declined));
     }
     // Not blind to a track's own settings; and tracks keep the document's
     // order (the spec's "in input order"), by either parser.
     const std::string two = R"({"tracks": {"b": [{"time": 0, "quat": [1, 0, 0, 0]}], "a": {"fps": 12, "keys": [{"frame": 0, "quat": [1, 0, 0, 0]}]}}})";
-    const std::string two_declined = R"({"note": "\u00e9", )" + two.substr(1);
+    const std::string two_declined = R"({"note": [[[[[[[[[1]]]]]]]]], )" + two.substr(1);
     for (const std::string& order : {dump(two), dump(two_declined)}) {
         CHECK(order.rfind("b ", 0) == 0);
         CHECK(order.find("\na ") != std::string::npos);
@@ -269,6 +274,11 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
              "{\"tracks\": {\"caf\xc3\xa9\": [" + k + "], \"\xe3\x82\xab\xe3\x83\xa1\xe3\x83\xa9\": [" + k2 +
                  "], \"\xf0\x9f\xa6\xb4\": [" + k + "]}}",
              "[{\"time\": 0, \"quat\": [1, 0, 0, 0], \"note\": \"\xc3\xa9\x7f\"}]",
+             R"([{"time": 0, "quat": [1, 0, 0, 0], "note": "}{"}, {"time": 1, "note": "\"", "quat": [0, 1, 0, 0]}])",
+             // The same as escapes, as Python's json.dump writes them; and the other escapes
+             R"({"tracks": {"caf\u00e9": [)" + k + R"(], "\u30ab\u30e1\u30e9": [)" + k2 + R"(], "\ud83e\uddb4": [)" + k + "]}}",
+             R"({"note": "\"}\\\/\b\f\n\r\t\u00E9", "\u0066ps": 30, "k\u0065ys": [{"time": 0, "quat": [1, 0, 0, 0], "note": "\"]}"}]})",
+             R"({"tracks": {"\"a\\\"": [)" + k + "]}}",
          }) {
         CAPTURE(doc);
         const std::string streamed = streamed_keys(doc);
@@ -283,9 +293,13 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
              R"({"keys": [)" + k + R"(], "keys": [)" + k + "]}", R"({"tracks": {"a": [)" + k + R"(], "a": [)" + k + "]}}",
              R"({"keys": []})", R"({"tracks": {}})", R"({"tracks": {"a": {"fps": 2}}})", R"({"other": 1})", R"({"keys": 5})",
              R"({"keys": [)" + k + "]} x", R"({"keys": [)" + k, R"({"keys": [)" + k + ",]}", R"({"keys": [)" + k + " " + k2 + "]}",
-             "\xEF\xBB\xBF[" + k + "]", R"({"note": "\u00e9", "keys": [)" + k + "]}", R"({"tracks": {"\u00e9": [)" + k + "]}}",
-             R"({"note": [[[[[[[[[[1]]]]]]]]]], "keys": [)" + k + "]}",
-             R"({"tracks": {"a\u0001": [)" + k + "]}}", "42", "\"keys\"", "",
+             "\xEF\xBB\xBF[" + k + "]", R"({"note": [[[[[[[[[[1]]]]]]]]]], "keys": [)" + k + "]}",
+             R"({"tracks": {"a": [)" + k + R"(], "\u0061": [)" + k + "]}}", "42", "\"keys\"", "",
+             // Escapes nlohmann-json refuses: a lone surrogate either way, one not followed by its pair, unknown, cut short.
+             R"({"tracks": {"\ud83e": [)" + k + "]}}", R"({"tracks": {"\uddb4": [)" + k + "]}}",
+             R"({"tracks": {"\ud83e\u0041": [)" + k + "]}}", R"({"tracks": {"\x": [)" + k + "]}}",
+             R"({"tracks": {"\u00e": [)" + k + "]}}", R"([{"time": 0, "quat": [1, 0, 0, 0], "note": "\ud800"}])",
+             R"([{"time": 0, "quat": [1, 0, 0, 0], "note": "\q"}])",
              // What is not UTF-8 (overlong, a surrogate, cut short, past U+10FFFF): read_json words it.
              "{\"tracks\": {\"\xc0\xaf\": [" + k + "]}}", "{\"tracks\": {\"\xed\xa0\x80\": [" + k + "]}}",
              "{\"tracks\": {\"\xc3\": [" + k + "]}}", "{\"tracks\": {\"\xf4\x90\x80\x80\": [" + k + "]}}",
@@ -296,6 +310,7 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
         CHECK(streamed_keys(doc).ends_with("declined"));
     }
     // Errors in the keys it reads: thrown, for read_json to word (after the keys before them).
+    CHECK(streamed_keys(R"({"tracks": {"a\u0001": [)" + k + "]}}") == "error");
     CHECK(streamed_keys(R"({"keys": [{"time": 0, "quat": [1, 0, 0]}]})") == "error");
     CHECK(streamed_keys("[" + k + ", " + k2 + ", 7]") == streamed_keys("[" + k + ", " + k2 + "]") + "error");
     // Read in blocks of 64 KB: a block ends in each place of a setting, and of a key.
@@ -310,6 +325,14 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
         CHECK(streamed == whole_keys(doc));
         if (pad % 20 == 0) CHECK(streamed_keys(doc, true) == streamed);
     }
+    // ... and of escapes, in a name and in a value.
+    for (std::size_t pad = 65480; pad < 65540; ++pad) {
+        const std::string doc = "{" + std::string(pad, ' ') + R"("tracks": {"\"\u00e9\\": {"note": "\"]}\\\"", "keys": [)" + keys + "]}}}";
+        CAPTURE(pad);
+        const std::string streamed = streamed_keys(doc);
+        CHECK(streamed.find("\n\"\xc3\xa9\\ 0 - 24 tracks.\"\xc3\xa9\\.keys[1399] 1399 -1 0 [") != std::string::npos);
+        CHECK(streamed == whole_keys(doc));
+    }
     // Parsed ahead, each track's keys keep its settings and names.
     const std::string two = R"({"tracks": {"a": {"quat_order": "xyzw", "keys": [)" + keys +
                             R"(]}, "b": {"angles": "radians", "fps": 30, "keys": [)" + keys + "]}}}";
@@ -320,7 +343,7 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
     // key flat_json declines.
     const std::string bad = "[" + keys + R"(, {"time": 1400, "quat": [1, 0, 0]}])";
     CHECK(streamed_keys(bad, true) == streamed_keys("[" + keys + "]") + "error");
-    const std::string escaped = "[" + keys + R"(, {"time": 1400, "quat": [1, 0, 0, 0], "note": "\u00e9"}])";
+    const std::string escaped = "[" + keys + R"(, {"time": 1400, "quat": [1, 0, 0, 0], "note": [[[[[[[[[1]]]]]]]]]}])";
     CHECK(streamed_keys(escaped, true) == streamed_keys("[" + keys + "]") + "declined");
     CHECK(streamed_keys(escaped) == streamed_keys("[" + keys + "]") + "declined");
     CHECK(whole_keys(bad) == "in: [1400]: 'quat': expected an array of 4 numbers, got 3 elements");
@@ -328,7 +351,7 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
 
 TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-json's reading gives") {
     // Each line twice: as written, which flat_json takes, and with a member
-    // flat_json declines (an escaped string), which nlohmann-json reads.
+    // flat_json declines (nested deeper than it reads), which nlohmann-json reads.
     const auto dump_lines = [](const std::string& text) {
         try {
             std::string out;
@@ -359,11 +382,12 @@ TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-jso
              R"("frame": "3", "quat": [1, 0, 0, 0])", R"("quat": [1, 0, 0, 0])", R"("time": 0, "quat": [1, 0, 0, 0], "rotvec": [0, 0, 0])",
              R"("time": 0)", R"("time": 0, "quat": [1, 0, 0])", R"("time": "0", "quat": [1, 0, 0, 0])",
              R"("track": "hip", "time": 0, "quat": [1, 0, 0, 0])", R"("track": 7, "time": 0, "quat": [1, 0, 0, 0])",
-             R"("track": "a\tb", "time": 0, "quat": [1, 0, 0, 0])",
+             R"("track": "a\tb", "time": 0, "quat": [1, 0, 0, 0])", R"("track": "caf\u00e9\ud83e\uddb4", "time": 0, "quat": [1, 0, 0, 0])",
+             R"("tr\u0061ck": "\"hip\"", "t\u0069me": 0, "quat": [1, 0, 0, 0])",
          }) {
         CAPTURE(key);
-        const std::string taken = "{" + key + "}", declined = "{\"note\": \"\\u00e9\", " + key + "}";
-        CHECK(line.parse(taken) == (key.find('\\') == std::string::npos));
+        const std::string taken = "{" + key + "}", declined = R"({"note": [[[[[[[[[1]]]]]]]]], )" + key + "}";
+        CHECK(line.parse(taken));
         CHECK(!line.parse(declined));
         CHECK(dump_lines(taken + "\n") == dump_lines(declined + "\n"));
         CHECK(dump_lines("\n" + declined + "\n" + taken + "\n") == dump_lines("\n" + taken + "\n" + declined + "\n"));
