@@ -13,6 +13,7 @@
 #include "cli_flags.hpp"
 #include "formats_help.hpp"
 #include "ground/text.hpp"
+#include "io/common/format.hpp"
 #include "suggest.hpp"
 
 namespace keyrot {
@@ -31,11 +32,14 @@ std::string help_text(const CLI::App& app, CLI::AppFormatMode mode = CLI::AppFor
     return text;
 }
 
+/// " (did you mean 'X'?)", or nothing.
+std::string did_you_mean(const std::optional<std::string>& name) {
+    return name ? fmt::format(" (did you mean '{}'?)", *name) : "";
+}
+
 /// For an unexpected flag (CLI11's "The following argument was not
-/// expected: --fsp"), " (did you mean '--fps'?)" when one of the command's
-/// flags is a slip of the keyboard away (one edit for a name of four letters
-/// or fewer, two for a longer one), or the longest flag it spells out
-/// ("--tolerance": "--tol"); else nothing: compare's "--rep" is no "--help".
+/// expected: --fsp"), " (did you mean '--fps'?)" when likely_meant finds
+/// one of the command's flags.
 std::string flag_suggestion(const CLI::App& sub, const std::string& message) {
     const auto colon = message.rfind(": ");
     if (colon == std::string::npos) return "";
@@ -54,15 +58,28 @@ std::string flag_suggestion(const CLI::App& sub, const std::string& message) {
         for (const std::string& name : option->get_snames())
             if (name != "h") flags.push_back("-" + name);
     }
-    if (flags.empty()) return "";
-    const std::string best = nearest(word, flags);
-    const std::size_t letters = word.size() - std::min(word.find_first_not_of('-'), word.size());
-    if (edit_distance(word, best) <= (letters <= 4 ? 1u : 2u)) return fmt::format(" (did you mean '{}'?)", best);
-    // A flag spelt out in full ("--tolerance" for "--tol"): the longest flag it begins with.
-    std::string longest;
-    for (const std::string& flag : flags)
-        if (flag.size() > 2 && word.starts_with(flag) && flag.size() > longest.size()) longest = flag;
-    return longest.empty() ? "" : fmt::format(" (did you mean '{}'?)", longest);
+    return did_you_mean(likely_meant(word, flags, word.size() - std::min(word.find_first_not_of('-'), word.size())));
+}
+
+/// For a value not among a flag's choices (CLI11's "--rep: quaternion not
+/// in {axis-angle,quat,...}"), " (did you mean 'quat'?)" when likely_meant
+/// finds one; a file's extension means its format ("jsonl": "ndjson").
+std::string choice_suggestion(const std::string& message) {
+    const auto set = message.rfind(" not in {");
+    if (set == std::string::npos || !message.ends_with("}")) return "";
+    const auto colon = message.rfind(": ", set);
+    const std::string word = message.substr(colon == std::string::npos ? 0 : colon + 2,
+                                            set - (colon == std::string::npos ? 0 : colon + 2));
+    std::vector<std::string> choices;
+    std::string_view list = std::string_view(message).substr(set + 9);
+    list.remove_suffix(1);
+    for (std::size_t comma; !list.empty(); list.remove_prefix(std::min(comma + 1, list.size()))) {
+        comma = std::min(list.find(','), list.size());
+        choices.emplace_back(list.substr(0, comma));
+    }
+    if (const auto f = format_of_path("." + word); f && std::ranges::find(choices, to_string(*f)) != choices.end())
+        return did_you_mean(std::string(to_string(*f)));
+    return did_you_mean(likely_meant(word, choices, word.size()));
 }
 
 std::vector<std::string> command_names() {
@@ -159,6 +176,7 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
         if (dynamic_cast<const CLI::ExtrasError*>(&e))
             for (std::size_t i = 0; i < commands.size(); ++i)
                 if (first == commands[i].name) what += flag_suggestion(*subs[i], what);
+        if (dynamic_cast<const CLI::ValidationError*>(&e)) what += choice_suggestion(what);
         throw usage_error(fmt::format("{}: {} (see keyrot {} --help)", first, what, first));
     }
     for (std::size_t i = 0; i < commands.size(); ++i)
