@@ -54,7 +54,8 @@ public:
         const int read = !!k.time + !!k.frame + rotations + !!angle + !!translation + !!scale + !!weights + !!velocity + !!acceleration +
                          obj_.member("track").has_value();
         if (obj_.size() > static_cast<std::size_t>(read)) k.unknown = first_unknown_member();
-        if (rotations == 0) fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'");
+        if (rotations == 0)
+            fail("no rotation: expected one of 'quat', 'axis' and 'angle', 'rotvec', 'euler', 'matrix'" + columns_hint());
         if (rotations > 1) fail("more than one rotation: expected exactly one of 'quat', 'axis', 'rotvec', 'euler', 'matrix'");
         if (angle && !axis) fail("'angle' without 'axis'");
 
@@ -115,6 +116,21 @@ private:
                 name = member.empty() ? "\"\"" : member;
         });
         return name;
+    }
+
+    /// A key without a rotation member whose fields are a rotation's CSV
+    /// columns (pandas' to_json writes a table's rows so): what to write
+    /// instead. Empty for other keys.
+    std::string columns_hint() const {
+        for (const auto& [r, name] : names_of<rep>) {
+            const auto columns = rotation_columns(r, quat_order::wxyz);
+            if (!obj_.member(columns.front())) continue;
+            const std::string member(rotation_member(r));
+            return fmt::format(", got '{}', a CSV column: write the table as CSV (pandas: to_csv), or the rotation as "
+                               "'{}'{} (keyrot help formats)",
+                               columns.front(), member, r == rep::axis_angle ? " and 'angle'" : "");
+        }
+        return "";
     }
 
     [[noreturn]] void fail(const std::string& message) const { throw input_error(where(source_, at_), message); }
