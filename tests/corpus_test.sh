@@ -137,25 +137,58 @@ for f in dense_bad_cell.csv dense_zero_key.csv dense_bad_cell.ndjson; do
         expect_error "$f $out" "keyrot: $f:$line: $message" -- "$keyrot" resample "$f" --fps 4 $out
     done
 done
+# Into standard output redirected to a file, written in one pass, an error
+# a long way in (hundreds of thousands of rows) cuts the file back to where
+# keyrot began: what it held before stays, and nothing of keyrot's. Where
+# standard error shares the file (2>&1), or it is appended to (>>), the two
+# passes write it, warnings first.
+for f in dense_bad_cell.csv dense_zero_key.ndjson; do
+    [[ -e $f ]] || awk -F, 'NR > 1 { printf "{\"time\": %s, \"quat\": [%s, %s, %s, %s]}\n", $1, NR == 2000 ? 0 : $2, $3, $4,
+                                         NR == 2000 ? 0 : $5 }' dense.csv >"$f"
+    { printf 'kept\n'; "$keyrot" resample "$f" --fps 20000 2>redirected.err; } >redirected.out
+    rc=$?
+    if [[ $rc == 2 && $(cat redirected.out) == kept && $(wc -l <redirected.err) == 1 ]]; then
+        passed=$((passed + 1))
+    else
+        fail "$f into a redirected standard output: status $rc, $(wc -c <redirected.out) bytes, stderr [$(cat redirected.err)]"
+    fi
+done
+"$keyrot" resample warnings.csv --fps 20000 2>&1 | cat >piped.out
+"$keyrot" resample warnings.csv --fps 20000 >shared.out 2>&1
+printf 'kept\n' >appended.out
+"$keyrot" resample warnings.csv --fps 20000 >>appended.out 2>/dev/null
+if [[ $(head -c 7 shared.out) == keyrot: ]] && cmp -s shared.out piped.out &&
+    cmp -s appended.out <(printf 'kept\n'; grep -v '^keyrot:' piped.out); then
+    passed=$((passed + 1))
+else
+    fail "warnings.csv into standard output shared with standard error, or appended to: not the two passes' output"
+fi
 printf '{"frame": 0, "quat": [1, 0, 0, 0]}\n{"time": 1, "quat": [0, 1, 0, 0]}\n' > frame_then_time.ndjson
 printf '{"time": 0, "quat": [1, 0, 0, 0]}\n{"frame": 24, "quat": [0, 1, 0, 0]}\n' > time_then_frame.ndjson
 for f in late_translation.csv second_track_translation.csv interleaved.csv warnings.csv dense.csv \
     frame_then_time.ndjson time_then_frame.ndjson \
     "$tests"/../data/* "$tests"/good/*; do
-    # 20000 fps: tens of thousands of rows, formatted on several threads
+    # 20000 fps: tens of thousands of rows, formatted on several threads.
+    # Two passes into a pipe; one into -o FILE, and into standard output
+    # redirected to a file (after a wrong guess, cut back and written again).
     for command in "resample --fps 4" "resample --fps 20000" convert; do
         # shellcheck disable=SC2086
-        "$keyrot" $command "$f" --to csv >two.out 2>two.err
-        rc_two=$?
+        "$keyrot" $command "$f" --to csv 2>two.err | cat >two.out
+        rc_two=${PIPESTATUS[0]}
         # shellcheck disable=SC2086
         "$keyrot" $command "$f" -o one.csv 2>one.err
         rc_one=$?
-        if [[ $rc_one == "$rc_two" ]] && cmp -s one.csv two.out && cmp -s one.err two.err; then
+        # shellcheck disable=SC2086
+        { printf 'kept\n'; "$keyrot" $command "$f" --to csv 2>redirected.err; } >redirected.out
+        rc_redirected=$?
+        if [[ $rc_one == "$rc_two" && $rc_redirected == "$rc_two" ]] && cmp -s one.csv two.out &&
+            cmp -s one.err two.err && cmp -s redirected.err two.err &&
+            cmp -s redirected.out <(printf 'kept\n'; cat two.out); then
             passed=$((passed + 1))
         else
-            fail "one pass $(basename "$f"), $command: status $rc_one (two passes: $rc_two), stderr [$(cat one.err)]"
+            fail "one pass $(basename "$f"), $command: status $rc_one, redirected $rc_redirected (two passes: $rc_two), stderr [$(cat one.err)]"
         fi
-        rm -f one.csv two.out
+        rm -f one.csv two.out redirected.out
     done
 done
 

@@ -244,9 +244,13 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
 void transform(const transform_plan& p, const input_source& src, std::ostream& out, std::ostream& err) {
     warnings warn(err, src.source());
     // One pass where an error on the way leaves nothing written: into a file
-    // that replaces its target at the end, or a table written at its end.
-    const bool one_pass = (p.target && replaced_on_commit(*p.target)) || written_at_finish(p.out);
+    // that replaces its target at the end, a table written at its end, or
+    // standard output redirected to a file, cut back after a failure.
+    std::optional<standard_output_mark> mark;
+    if (!p.target && !written_at_finish(p.out) && !src.is_standard_output()) mark = standard_output_mark::of(out);
+    const bool one_pass = (p.target && replaced_on_commit(*p.target)) || written_at_finish(p.out) || mark;
     if (one_pass && transform_in_one_pass(p, src, out, warn)) return p.rows->report(out, err);
+    if (mark) mark->take_back(out);
     p.rows->restart();
     // Otherwise everything is validated before the first byte is written,
     // so that an error never leaves partial output (on standard output, or

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fcntl.h>
+#include <stdio_ext.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -15,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <ostream>
@@ -182,6 +184,28 @@ void sync_directory(const std::string& directory) {
 }  // namespace
 
 bool replaced_on_commit(const std::string& path) { return is_replaced(path, status_of(path)); }
+
+std::optional<standard_output_mark> standard_output_mark::of(std::ostream& out) {
+    if (&out != &std::cout || !out.flush()) return std::nullopt;
+    struct stat st {}, err {};
+    const int flags = ::fcntl(STDOUT_FILENO, F_GETFL);
+    if (flags < 0 || (flags & O_APPEND) != 0 || ::fstat(STDOUT_FILENO, &st) != 0 || !S_ISREG(st.st_mode))
+        return std::nullopt;
+    if (::fstat(STDERR_FILENO, &err) == 0 && err.st_dev == st.st_dev && err.st_ino == st.st_ino) return std::nullopt;
+    const off_t at = ::lseek(STDOUT_FILENO, 0, SEEK_CUR);
+    // (cutting it where it ends changes nothing, where it may be cut at all)
+    if (at != st.st_size || ::ftruncate(STDOUT_FILENO, at) != 0) return std::nullopt;
+    return standard_output_mark(at);
+}
+
+void standard_output_mark::take_back(std::ostream& out) const {
+    // std::cout writes through stdio's stdout: what it holds came after the
+    // mark (flushed then), and must not follow the cut.
+    ::__fpurge(stdout);
+    out.clear();
+    if (::ftruncate(STDOUT_FILENO, at_) != 0 || ::lseek(STDOUT_FILENO, at_, SEEK_SET) != at_)
+        throw error("cannot take back what was written to standard output: " + errno_text());
+}
 
 void write_to_stream(std::ostream& out, std::string_view text) {
     if (!out) throw error("cannot write to standard output: it is closed");

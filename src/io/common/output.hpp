@@ -35,6 +35,27 @@ struct commit_mode {
 /// it cannot be taken back.
 bool replaced_on_commit(const std::string& path);
 
+/// Standard output redirected to a regular file (keyrot ... > out.csv):
+/// what is written there after the mark can be taken back, by cutting the
+/// file back to it, so that one pass may write there as into a temporary
+/// file. Only where that harms nobody: standard output at the end of its
+/// file and not appending (after `>>` another process may append too), the
+/// file one that may be cut (not append-only) and not standard error's
+/// (`2>&1`: the warnings, held back in one pass, would move). A pipe, a
+/// terminal or a device cannot take anything back.
+class standard_output_mark {
+public:
+    /// None unless `out` is std::cout on such a file.
+    static std::optional<standard_output_mark> of(std::ostream& out);
+    /// Cuts the file back to the mark, dropping what the stream still
+    /// holds; throws keyrot::error if it cannot.
+    void take_back(std::ostream& out) const;
+
+private:
+    explicit standard_output_mark(long long at) : at_(at) {}
+    long long at_;
+};
+
 /// Writes `text` to `out` (standard output) and flushes it. Throws
 /// keyrot::error with the reason ("cannot write to standard output: No
 /// space left on device") when it cannot.

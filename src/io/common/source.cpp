@@ -228,6 +228,12 @@ std::unique_ptr<std::istream> input_source::open() const {
     return std::make_unique<descriptor_stream>(fd_, start_, std::max(start_, size_), nullptr, source_);
 }
 
+bool input_source::is_standard_output() const {
+    struct stat in {}, out {};
+    return ::fstat(input_fd_ >= 0 ? input_fd_ : fd_, &in) == 0 && ::fstat(STDOUT_FILENO, &out) == 0 &&
+           in.st_dev == out.st_dev && in.st_ino == out.st_ino;
+}
+
 format input_source::detect(std::optional<format> given) const {
     if (given) return *given;
     if (!is_standard_stream(name_))

@@ -42,6 +42,9 @@ public:
     std::unique_ptr<std::istream> open() const;
     /// `given` (--from), else by the name's extension, else sniffed from the content.
     format detect(std::optional<format> given) const;
+    /// Whether the input is the file standard output writes (keyrot
+    /// resample a.csv >> a.csv).
+    bool is_standard_output() const;
 
 private:
     std::string name_, source_;
