@@ -68,8 +68,8 @@ std::string choice_suggestion(const std::string& message) {
     const auto set = message.rfind(" not in {");
     if (set == std::string::npos || !message.ends_with("}")) return "";
     const auto colon = message.rfind(": ", set);
-    const std::string word = message.substr(colon == std::string::npos ? 0 : colon + 2,
-                                            set - (colon == std::string::npos ? 0 : colon + 2));
+    const std::size_t start = colon == std::string::npos ? 0 : colon + 2;
+    const std::string word = message.substr(start, set - start);
     std::vector<std::string> choices;
     std::string_view list = std::string_view(message).substr(set + 9);
     list.remove_suffix(1);

@@ -122,13 +122,12 @@ private:
     /// columns (pandas' to_json writes a table's rows so): what to write
     /// instead. Empty for other keys.
     std::string columns_hint() const {
-        for (const auto& [r, name] : names_of<rep>) {
-            const auto columns = rotation_columns(r, quat_order::wxyz);
+        for (const auto& r : names_of<rep>) {
+            const auto columns = rotation_columns(r.value, quat_order::wxyz);
             if (!obj_.member(columns.front())) continue;
-            const std::string member(rotation_member(r));
             return fmt::format(", got '{}', a CSV column: write the table as CSV (pandas: to_csv), or the rotation as "
                                "'{}'{} (keyrot help formats)",
-                               columns.front(), member, r == rep::axis_angle ? " and 'angle'" : "");
+                               columns.front(), rotation_member(r.value), r.value == rep::axis_angle ? " and 'angle'" : "");
         }
         return "";
     }

@@ -17,7 +17,6 @@
 #include <string_view>
 #include <vector>
 
-#include "ground/text.hpp"
 #include "io/json/flat_json.hpp"
 #include "io/json/json_keys.hpp"
 #include "io/json/json_stream.hpp"
@@ -68,7 +67,7 @@ public:
     /// declined (what nlohmann-json would refuse: the whole reader words it).
     std::optional<std::string> string() {
         if (!take('"')) return std::nullopt;
-        bool escapes = false, escaped = false;  // escaped: the byte after a backslash
+        bool escaped = false;  // the byte after a backslash
         for (std::size_t i = at_;; ++i) {
             if (i == buf_.size()) {
                 const std::size_t offset = i - at_;
@@ -79,14 +78,12 @@ public:
             if (escaped) {
                 escaped = false;
             } else if (c == '\\') {
-                escapes = escaped = true;
+                escaped = true;
             } else if (c < 0x20) {
                 return decline(), std::nullopt;
             } else if (c == '"') {
-                const std::string_view quoted(buf_.data() + at_, i - at_);
                 std::string s;
-                if (escapes ? !append_json_string(quoted, s) : (s.assign(quoted), !is_valid_utf8(s)))
-                    return decline(), std::nullopt;
+                if (!append_json_string(std::string_view(buf_.data() + at_, i - at_), s)) return decline(), std::nullopt;
                 at_ = i + 1;
                 return s;
             }
