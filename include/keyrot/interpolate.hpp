@@ -5,6 +5,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "keyrot/convert.hpp"
@@ -89,7 +90,6 @@ public:
 
 private:
     friend class segment_curve;
-    squad_curve() = default;
     slerp_segment arc_, control_arc_;
 };
 
@@ -109,17 +109,26 @@ public:
     /// frame inside.
     segment_curve curve() const noexcept;
     /// squad's keys and control points (for method squad only).
-    squad_keys squad() const noexcept { return {t0, t1, q0, q1, s0_, s1_}; }
+    squad_keys squad() const noexcept;
 
 private:
     friend class segment_builder;
     friend class segment_curve;
+    struct squad_points {  // squad: the control points
+        quat s0, s1;
+    };
+    struct euler_angles {  // euler: the keys' angles
+        std::array<double, 3> e0, e1;
+        euler_seq seq;
+    };
+    struct spline_keys {  // cubicspline: the keys as the spline passes them
+        spline_key k0, k1;
+    };
     method how_ = method::slerp;
-    quat s0_, s1_;                       // squad: the control points
-    std::array<double, 3> e0_{}, e1_{};  // euler: the keys' angles
-    spline_key spline0_, spline1_;       // cubicspline: the keys as the spline passes them
-    spline_segment cubic_;               // cubic
-    euler_seq seq_;
+    // What the method needs beyond the keys, and nothing for the others: a
+    // segment is made (and its curve copies it) for every key, and the
+    // everyday methods' then take a few words.
+    std::variant<std::monostate, squad_points, euler_angles, spline_keys, spline_segment> more_;
 };
 
 /// The curve between two neighbouring keys for one method, ready to evaluate.
@@ -135,8 +144,7 @@ private:
     friend class segment;
     explicit segment_curve(const segment& keys) noexcept : keys_(keys) {}
     segment keys_;
-    slerp_segment arc_;  // slerp: q0 to q1
-    squad_curve squad_;
+    std::variant<std::monostate, slerp_segment, squad_curve> set_up_;  // slerp's arc; squad's curve
 };
 
 /// Turns a track's keys, as they arrive, into segments: the sign of each key

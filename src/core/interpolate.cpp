@@ -73,32 +73,38 @@ quat squad_control(quat prev, quat cur, quat next) noexcept {
 
 quat squad_curve::at(double h) const noexcept { return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h)); }
 
+squad_keys segment::squad() const noexcept {
+    const auto& p = std::get<squad_points>(more_);
+    return {t0, t1, q0, q1, p.s0, p.s1};
+}
+
 segment_curve segment::curve() const noexcept {
     segment_curve c(*this);
-    if (how_ == method::slerp) c.arc_ = slerp_segment(q0, q1);
-    if (how_ == method::squad) c.squad_ = squad_curve(squad());
+    if (how_ == method::slerp) c.set_up_.emplace<slerp_segment>(q0, q1);
+    if (how_ == method::squad) c.set_up_.emplace<squad_curve>(squad());
     return c;
 }
 
 quat segment_curve::at(double h) const noexcept {
     switch (keys_.how_) {
-        case method::slerp: return arc_.at(h);
+        case method::slerp: return std::get<slerp_segment>(set_up_).at(h);
         case method::nlerp: return nlerp(keys_.q0, keys_.q1, h);
-        case method::squad: return squad_.at(h);
+        case method::squad: return std::get<squad_curve>(set_up_).at(h);
         case method::step: return keys_.q0;
-        case method::cubic: return keys_.cubic_.at(h);
+        case method::cubic: return std::get<spline_segment>(keys_.more_).at(h);
         case method::cubicspline: {
             const auto c = [](quat q) { return std::array<double, 4>{q.w, q.x, q.y, q.z}; };
-            const spline_key &a = keys_.spline0_, &b = keys_.spline1_;
+            const auto& [a, b] = std::get<segment::spline_keys>(keys_.more_);
             const auto v = hermite(c(a.rotation), c(a.rotation_out), c(b.rotation), c(b.rotation_in), keys_.t1 - keys_.t0, h);
             const quat q{v[0], v[1], v[2], v[3]};
             // The tangents could cancel the values (a curve through zero): its start stands in.
             return std::isfinite(norm(q)) && norm(q) > 0 ? normalized(q) : keys_.q0;
         }
         case method::euler: {
+            const auto& k = std::get<segment::euler_angles>(keys_.more_);
             std::array<double, 3> e{};
-            for (std::size_t j = 0; j < 3; ++j) e[j] = (1 - h) * keys_.e0_[j] + h * keys_.e1_[j];
-            return from_euler(e, keys_.seq_);
+            for (std::size_t j = 0; j < 3; ++j) e[j] = (1 - h) * k.e0[j] + h * k.e1[j];
+            return from_euler(e, k.seq);
         }
     }
     return keys_.q0;
@@ -110,7 +116,7 @@ motion segment_curve::rates(double h) const noexcept {
     const auto c = [](quat q) { return std::array<double, 4>{q.w, q.x, q.y, q.z}; };
     const auto q = [](const std::array<double, 4>& v) { return quat{v[0], v[1], v[2], v[3]}; };
     switch (k.how_) {
-        case method::slerp: return {(1 / dt) * arc_.rotation_vector(), {}};
+        case method::slerp: return {(1 / dt) * std::get<slerp_segment>(set_up_).rotation_vector(), {}};
         case method::step: return {};
         case method::nlerp: {
             // the lerp l and its derivative (q1 - q0) / dt, then normalised
@@ -122,7 +128,7 @@ motion segment_curve::rates(double h) const noexcept {
         }
         case method::cubicspline: {
             // hermite() and its derivatives in h, per second; then normalised
-            const spline_key &a = k.spline0_, &b = k.spline1_;
+            const auto& [a, b] = std::get<segment::spline_keys>(k.more_);
             const double s = h, s2 = s * s, s3 = s2 * s;
             std::array<double, 4> v{}, d1{}, d2{};
             const auto av = c(a.rotation), ab = c(a.rotation_out), bv = c(b.rotation), ba = c(b.rotation_in);
@@ -137,22 +143,24 @@ motion segment_curve::rates(double h) const noexcept {
         }
         case method::euler: {
             // from_euler's product of three turns about axes, each angle linear in time
+            const auto& [e0, e1, seq] = std::get<segment::euler_angles>(k.more_);
             quat_jet f[3];
             for (std::size_t j = 0; j < 3; ++j) {
-                const double angle = (1 - h) * k.e0_[j] + h * k.e1_[j], rate = (k.e1_[j] - k.e0_[j]) / dt;
+                const double angle = (1 - h) * e0[j] + h * e1[j], rate = (e1[j] - e0[j]) / dt;
                 vec3 axis;
-                (k.seq_.axes[j] == 0 ? axis.x : k.seq_.axes[j] == 1 ? axis.y : axis.z) = 1;
+                (seq.axes[j] == 0 ? axis.x : seq.axes[j] == 1 ? axis.y : axis.z) = 1;
                 const quat e = from_axis_angle(axis, angle, angle_unit::radians);
                 const vec3 half_rate = (rate / 2) * axis;
                 f[j] = {e, e * quat{0, half_rate.x, half_rate.y, half_rate.z}, -(rate * rate / 4) * e};
             }
-            return motion_of(k.seq_.intrinsic ? f[0] * f[1] * f[2] : f[2] * f[1] * f[0]);
+            return motion_of(seq.intrinsic ? f[0] * f[1] * f[2] : f[2] * f[1] * f[0]);
         }
         case method::squad: {
             // q = P exp(g phi_C / 2): P and S the inner slerps (constant body
             // rates wp, ws), C = P* S, g = 2h(1 - h). phi_C's derivatives from
             // C's motion, then the product's.
-            const slerp_segment &arc = squad_.arc_, &control_arc = squad_.control_arc_;
+            const squad_curve& squad = std::get<squad_curve>(set_up_);
+            const slerp_segment &arc = squad.arc_, &control_arc = squad.control_arc_;
             const vec3 wp = (1 / dt) * arc.rotation_vector(), ws = (1 / dt) * control_arc.rotation_vector();
             const quat C = conjugate(arc.at(h)) * control_arc.at(h);
             const vec3 phi = 2.0 * log(C), wp_in_c = rotate(conjugate(C), wp);
@@ -166,7 +174,7 @@ motion segment_curve::rates(double h) const noexcept {
             return {u + inner.velocity, cross(u, inner.velocity) + inner.acceleration};
         }
         case method::cubic: {
-            const auto p = k.cubic_.derivatives(h);
+            const auto p = std::get<spline_segment>(k.more_).derivatives(h);
             return motion_of(p.phi, p.phi_dot, p.phi_ddot);
         }
     }
@@ -243,7 +251,7 @@ bool segment_builder::pop(segment& out, bool end) {
         const std::size_t i = c.next++ - c.first;
         out.how_ = how_;
         out.t0 = c.times[i], out.t1 = c.times[i + 1], out.q0 = c.keys[i], out.q1 = c.keys[i + 1];
-        out.cubic_ = spline_segment(out.q0, c.phi[i], out.t1 - out.t0, c.velocity[i], c.velocity[i + 1]);
+        out.more_ = spline_segment(out.q0, c.phi[i], out.t1 - out.t0, c.velocity[i], c.velocity[i + 1]);
         return true;
     }
     // squad's segment [0, 1] needs key 1's control point, which needs key 2
@@ -253,11 +261,14 @@ bool segment_builder::pop(segment& out, bool end) {
     const entry& b = window_[1];
     out.how_ = how_;
     out.t0 = a.time, out.t1 = b.time, out.q0 = a.q, out.q1 = b.q;
-    out.s0_ = a.s, out.s1_ = b.s;
-    if (how_ == method::euler) out.e0_ = a.e, out.e1_ = b.e, out.seq_ = *seq_;
-    if (how_ == method::cubicspline) {
-        out.spline0_ = splines_[0], out.spline1_ = splines_[1];
-        splines_.erase(splines_.begin());
+    switch (how_) {
+        case method::squad: out.more_ = segment::squad_points{a.s, b.s}; break;
+        case method::euler: out.more_ = segment::euler_angles{a.e, b.e, *seq_}; break;
+        case method::cubicspline:
+            out.more_ = segment::spline_keys{splines_[0], splines_[1]};
+            splines_.erase(splines_.begin());
+            break;
+        default: out.more_ = std::monostate{};
     }
     window_.erase(window_.begin());
     return true;
