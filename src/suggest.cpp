@@ -28,15 +28,16 @@ std::string nearest(std::string_view word, const std::vector<std::string>& names
 std::optional<std::string> likely_meant(std::string_view word, const std::vector<std::string>& names,
                                         std::size_t letters) {
     if (names.empty()) return std::nullopt;
-    std::string best = nearest(word, names);
-    const std::size_t edits = edit_distance(word, best);
+    const std::string nearest_name = nearest(word, names);
+    const std::size_t edits = edit_distance(word, nearest_name);
     const auto as_near = std::ranges::count_if(names, [&](const std::string& name) { return edit_distance(word, name) == edits; });
-    if (edits <= (letters <= 4 ? 1u : 2u) && as_near == 1) return best;  // "xyz": wxyz or xyzw?
-    best.clear();
+    if (edits <= (letters <= 4 ? 1u : 2u) && as_near == 1) return nearest_name;  // "xyz": wxyz or xyzw?
+    const std::string lower = ascii_lower(word);
+    std::string longest;  // spelt out in full
     for (const std::string& name : names)
-        if (name.size() >= 3 && ascii_lower(word).starts_with(ascii_lower(name)) && name.size() > best.size()) best = name;
-    if (best.empty()) return std::nullopt;
-    return best;
+        if (name.size() >= 3 && name.size() > longest.size() && lower.starts_with(ascii_lower(name))) longest = name;
+    if (longest.empty()) return std::nullopt;
+    return longest;
 }
 
 }  // namespace keyrot
