@@ -174,6 +174,9 @@ expect_error "/dev/zero as CSV, by default" "keyrot: /dev/zero:1: line longer th
 expect "'{' and 70 MB of random bytes as JSON: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \
     "read status kb < <(python3 '$tests/peak.py' '$keyrot' resample brace_junk.json 2>/dev/null)
      echo \$status \$( ((kb < 65536)) && echo small || echo \$kb KB)"
+expect "'{' and 70 MB of random bytes piped as glTF: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \
+    "read status kb < <(python3 '$tests/peak.py' '$keyrot' resample --from gltf < <(cat brace_junk.json) 2>/dev/null)
+     echo \$status \$( ((kb < 65536)) && echo small || echo \$kb KB)"
 rm -f brace_junk.json
 for source in /dev/zero /dev/urandom; do
     for from in csv ndjson json gltf glb bvh; do

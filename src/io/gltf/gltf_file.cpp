@@ -249,14 +249,14 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
     return {bytes.substr(offset, length), unsigned_member(bv, "byteStride", 0, here)};
 }
 
-/// Whether `start` (the first bytes read, at least one) could begin a
-/// glTF file: a GLB's magic, or JSON's '{' after any byte-order mark and
-/// white space.
+/// Whether `start` (the first bytes read) could begin a glTF file: a GLB's
+/// magic, or JSON's '{' after any byte-order mark and white space, with no
+/// syntax error after it (random bytes).
 bool could_begin_gltf(std::string_view start, format f) {
     if (f == format::glb) return std::string_view("glTF").starts_with(start.substr(0, 4));
     if (start.starts_with("\xEF\xBB\xBF")) start.remove_prefix(3);
     const std::size_t first = start.find_first_not_of(" \t\r\n");
-    return first == std::string_view::npos || start[first] == '{';
+    return first == std::string_view::npos || (start[first] == '{' && !broken_before_end(start));
 }
 
 }  // namespace
@@ -327,11 +327,15 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
     in.clear();
     if (!seekable) size = in.rdbuf()->in_avail();
     if (size > 0) bytes.read(in, std::min(static_cast<std::size_t>(size), max_bytes + 1));
-    // Input that cannot begin a glTF file (/dev/zero, say) is not read on
-    // to the limit: what came is parsed, which says what is wrong.
-    if (!seekable)
-        while (bytes.size() <= max_bytes && could_begin_gltf(bytes.view(), f) && bytes.read(in, std::size_t{1} << 16)) {
-        }
+    // Input that cannot begin a glTF file (/dev/zero, random bytes) is not
+    // read on to the limit: what came is parsed, which says what is wrong.
+    if (!seekable) {
+        constexpr std::size_t block = std::size_t{1} << 16;
+        if (bytes.size() < block) bytes.read(in, block - bytes.size());
+        if (could_begin_gltf(bytes.view().substr(0, block), f))
+            while (bytes.size() <= max_bytes && bytes.read(in, block)) {
+            }
+    }
     if (bytes.size() > max_bytes)
         throw input_error(
             source,

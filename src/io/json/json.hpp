@@ -19,6 +19,9 @@ namespace keyrot {
 /// input_error "<source>:<line>:<column>: invalid JSON: ..." (lines counted
 /// from `first_line`).
 nlohmann::ordered_json parse_json_text(std::string_view text, std::string_view source, std::size_t first_line = 1);
+/// Whether `text`, the start of a JSON text, has a syntax error before its
+/// end, which no more text could mend (random bytes after a '{').
+bool broken_before_end(std::string_view text);
 
 /// The whole document at once (memory about four times its size), its
 /// tracks and keys handed to `sink` in its order; returns whether it names

@@ -195,6 +195,16 @@ json parse_json_text(std::string_view text, std::string_view source, std::size_t
     }
 }
 
+bool broken_before_end(std::string_view text) {
+    try {
+        [[maybe_unused]] const json parsed = json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& e) {
+        return e.byte < text.size();
+    } catch (const json::exception&) {  // (a number beyond a double: said when the whole document is read)
+    }
+    return false;
+}
+
 namespace {
 
 using detail::apply_fields;
@@ -253,18 +263,6 @@ bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink, warn
     if (!j.is_object() && !j.is_array())
         throw input_error(opts.source, fmt::format("expected a JSON object or array, got {}", j.type_name()));
     read_track(j, "", "", settings, order, opts, sink, warn);
-    return false;
-}
-
-/// Whether `text`, the start of a document, has a syntax error before its
-/// end (which no more text could mend).
-bool broken_before_end(std::string_view text) {
-    try {
-        [[maybe_unused]] const json parsed = json::parse(text.begin(), text.end());
-    } catch (const json::parse_error& e) {
-        return e.byte < text.size();
-    } catch (const json::exception&) {  // (a number beyond a double: said when the whole document is read)
-    }
     return false;
 }
 
