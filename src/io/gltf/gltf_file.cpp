@@ -250,13 +250,10 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
 }
 
 /// Whether `start` (the first bytes read) could begin a glTF file: a GLB's
-/// magic, or JSON's '{' after any byte-order mark and white space, with no
-/// syntax error after it (random bytes).
+/// magic, or a JSON object.
 bool could_begin_gltf(std::string_view start, format f) {
     if (f == format::glb) return std::string_view("glTF").starts_with(start.substr(0, 4));
-    if (start.starts_with("\xEF\xBB\xBF")) start.remove_prefix(3);
-    const std::size_t first = start.find_first_not_of(" \t\r\n");
-    return first == std::string_view::npos || (start[first] == '{' && !broken_before_end(start));
+    return could_begin_json(start, "{");
 }
 
 }  // namespace

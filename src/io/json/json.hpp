@@ -19,9 +19,12 @@ namespace keyrot {
 /// input_error "<source>:<line>:<column>: invalid JSON: ..." (lines counted
 /// from `first_line`).
 nlohmann::ordered_json parse_json_text(std::string_view text, std::string_view source, std::size_t first_line = 1);
-/// Whether `text`, the start of a JSON text, has a syntax error before its
-/// end, which no more text could mend (random bytes after a '{').
-bool broken_before_end(std::string_view text);
+/// Whether `start`, the first bytes read of a JSON text, could begin one
+/// that opens with one of `openers`: white space so far (after any
+/// byte-order mark), or an opener and no syntax error before the end of
+/// what came, which no more text could mend. /dev/zero and random bytes
+/// cannot: they are said at once, not after reading on to the limit.
+bool could_begin_json(std::string_view start, std::string_view openers);
 
 /// The whole document at once (memory about four times its size), its
 /// tracks and keys handed to `sink` in its order; returns whether it names

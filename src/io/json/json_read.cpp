@@ -169,6 +169,18 @@ std::string place_of(std::string_view text, std::size_t byte, std::string_view s
     return fmt::format("{}:{}", where(source, first_line + line_of(text, byte) - 1), byte - line_start + 1);
 }
 
+/// Whether `text`, the start of a document, has a syntax error before its
+/// end (which no more text could mend).
+bool broken_before_end(std::string_view text) {
+    try {
+        [[maybe_unused]] const json parsed = json::parse(text.begin(), text.end());
+    } catch (const json::parse_error& e) {
+        return e.byte < text.size();
+    } catch (const json::exception&) {  // (a number beyond a double: said when the whole document is read)
+    }
+    return false;
+}
+
 }  // namespace
 
 json parse_json_text(std::string_view text, std::string_view source, std::size_t first_line) {
@@ -195,14 +207,11 @@ json parse_json_text(std::string_view text, std::string_view source, std::size_t
     }
 }
 
-bool broken_before_end(std::string_view text) {
-    try {
-        [[maybe_unused]] const json parsed = json::parse(text.begin(), text.end());
-    } catch (const json::parse_error& e) {
-        return e.byte < text.size();
-    } catch (const json::exception&) {  // (a number beyond a double: said when the whole document is read)
-    }
-    return false;
+bool could_begin_json(std::string_view start, std::string_view openers) {
+    start = without_bom(start);
+    const auto first = start.find_first_not_of(" \t\r\n");
+    return first == std::string_view::npos ||
+           (openers.find(start[first]) != std::string_view::npos && !broken_before_end(start));
 }
 
 namespace {
@@ -278,10 +287,7 @@ bool read_json(std::istream& in, const read_options& opts, raw_key_sink& sink, w
             // (random bytes, /dev/zero): said now, as reading it all would
             // say it, rather than after reading all there is.
             const std::string_view start = without_bom(std::string_view(chunk.data(), static_cast<std::size_t>(got)));
-            const auto first = start.find_first_not_of(" \t\r\n");
-            if (first != std::string_view::npos &&
-                ((start[first] != '{' && start[first] != '[') || broken_before_end(start)))
-                parse_json_text(start, opts.source, 1);
+            if (!could_begin_json(start, "{[")) parse_json_text(start, opts.source, 1);
         }
         if (text.size() + static_cast<std::size_t>(got) > opts.max_bytes)
             throw input_error(opts.source, fmt::format("JSON document longer than {} bytes (--max-bytes N raises the limit)",
