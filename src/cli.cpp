@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <ostream>
 #include <span>
@@ -37,20 +38,14 @@ std::string did_you_mean(const std::optional<std::string>& name) {
     return name ? fmt::format(" (did you mean '{}'?)", *name) : "";
 }
 
-/// For an unexpected flag (CLI11's "The following argument was not
-/// expected: --fsp"), " (did you mean '--fps'?)" when likely_meant finds
-/// one of the command's flags.
-std::string flag_suggestion(const CLI::App& sub, const std::string& message) {
-    const auto colon = message.rfind(": ");
-    if (colon == std::string::npos) return "";
-    std::string_view rest = std::string_view(message).substr(colon + 2), word;
-    while (!rest.empty() && !word.starts_with("-")) {  // the first that looks like a flag
-        const auto space = std::min(rest.find(' '), rest.size());
-        word = rest.substr(0, space);
-        rest.remove_prefix(std::min(space + 1, rest.size()));
-    }
-    word = word.substr(0, word.find('='));
-    if (!word.starts_with("-")) return "";
+/// "a", "a or b", "a, b or c".
+std::string spoken_list(const std::vector<std::string>& names, std::string_view conjunction) {
+    if (names.size() < 2) return names.empty() ? "" : names.front();
+    return fmt::format("{} {} {}", fmt::join(names.begin(), names.end() - 1, ", "), conjunction, names.back());
+}
+
+/// A command's flags as typed: --fps, -o; not --help.
+std::vector<std::string> flags_of(const CLI::App& sub) {
     std::vector<std::string> flags;
     for (const CLI::Option* option : sub.get_options()) {
         for (const std::string& name : option->get_lnames())
@@ -58,7 +53,55 @@ std::string flag_suggestion(const CLI::App& sub, const std::string& message) {
         for (const std::string& name : option->get_snames())
             if (name != "h") flags.push_back("-" + name);
     }
-    return did_you_mean(likely_meant(word, flags, word.size() - std::min(word.find_first_not_of('-'), word.size())));
+    return flags;
+}
+
+/// For an unexpected flag (CLI11's "The following argument was not
+/// expected: --fsp"): " (did you mean '--fps'?)" when likely_meant finds
+/// one of the command's flags. A flag of other commands names them, as
+/// typed or as likely meant: reduce's "--fps" gives " (--fps is a flag of
+/// keyrot resample)", resample's "--tolerance" gives " (did you mean
+/// '--tol' of keyrot compare or reduce?)", not resample's "--to".
+std::string flag_suggestion(std::string_view command_name, const std::string& message) {
+    const auto colon = message.rfind(": ");
+    if (colon == std::string::npos) return "";
+    std::string_view rest = std::string_view(message).substr(colon + 2), typed;
+    while (!rest.empty() && !typed.starts_with("-")) {  // the first that looks like a flag
+        const auto space = std::min(rest.find(' '), rest.size());
+        typed = rest.substr(0, space);
+        rest.remove_prefix(std::min(space + 1, rest.size()));
+    }
+    const std::string word(typed.substr(0, typed.find('=')));
+    if (!word.starts_with("-")) return "";
+    // Every command defined (only the one named was, for start-up), to see
+    // whose flags these are.
+    CLI::App all;
+    options unused;
+    cli::raw_flags unused_flags;
+    std::vector<std::string> own;
+    std::map<std::string, std::vector<std::string>> others;  // a flag of other commands: theirs
+    for (const auto& c : commands) {
+        CLI::App* sub = all.add_subcommand(c.name);
+        c.define(*sub, unused, unused_flags);
+        for (std::string& flag : flags_of(*sub)) {
+            if (command_name == c.name) own.push_back(std::move(flag));
+            else others[std::move(flag)].emplace_back(c.name);
+        }
+    }
+    for (const std::string& flag : own) others.erase(flag);
+    const auto owners = [&](const std::string& flag, std::string_view conjunction) {
+        return "keyrot " + spoken_list(others.at(flag), conjunction);
+    };
+    if (others.contains(word)) return fmt::format(" ({} is a flag of {})", word, owners(word, "and"));
+    std::vector<std::string> names = own;
+    for (const auto& entry : others) names.push_back(entry.first);
+    const std::size_t letters = word.size() - std::min(word.find_first_not_of('-'), word.size());
+    // (a slip as near one of the command's flags as another's: the command's)
+    std::optional<std::string> meant = likely_meant(word, names, letters);
+    if (!meant) meant = likely_meant(word, own, letters);
+    if (meant && others.contains(*meant))
+        return fmt::format(" (did you mean '{}' of {}?)", *meant, owners(*meant, "or"));
+    return did_you_mean(meant);
 }
 
 /// For a value not among a flag's choices (CLI11's "--rep: quaternion not
@@ -90,8 +133,7 @@ std::vector<std::string> command_names() {
 
 /// The commands as a message lists them: "resample, convert, slerp, compare, info or reduce".
 std::string listed_commands() {
-    const std::vector<std::string> names = command_names();
-    return fmt::format("{} or {}", fmt::join(names.begin(), names.end() - 1, ", "), names.back());
+    return spoken_list(command_names(), "or");
 }
 
 /// `keyrot help [TOPIC]`: the program's help, a command's, or the formats'.
@@ -173,9 +215,7 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
         if (!known) throw usage_error(fmt::format("expected a command: {} (see keyrot --help)", listed_commands()));
         std::string what = e.what();
         if (what == "KEY is required") what = "KEY and ANSWER are missing: expected the key, then one answer or more";
-        if (dynamic_cast<const CLI::ExtrasError*>(&e))
-            for (std::size_t i = 0; i < commands.size(); ++i)
-                if (first == commands[i].name) what += flag_suggestion(*subs[i], what);
+        if (dynamic_cast<const CLI::ExtrasError*>(&e)) what += flag_suggestion(first, what);
         if (dynamic_cast<const CLI::ValidationError*>(&e)) what += choice_suggestion(what);
         throw usage_error(fmt::format("{}: {} (see keyrot {} --help)", first, what, first));
     }

@@ -213,7 +213,7 @@ expect "info -o info.json writes JSON" 0 "walk.csv 2" -- bash -c \
 expect "info names each channel as played" 0 "  interpolation: rotation slerp, translation linear
   interpolation: rotation step" -- bash -c "'$keyrot' info '$data/arm_wave.gltf' | grep -E '^  interpolation: (rotation slerp, translation|rotation step)'"
 expect_error "info --to csv" "keyrot: info: --to: csv not in {json} (see keyrot info --help)" -- "$keyrot" info walk.csv --to csv
-expect_error "compare --rep" "keyrot: compare: The following argument was not expected: --rep (see keyrot compare --help)" -- \
+expect_error "compare --rep" "keyrot: compare: The following argument was not expected: --rep (--rep is a flag of keyrot resample, convert, slerp, reduce and plot) (see keyrot compare --help)" -- \
     "$keyrot" compare walk.csv walk.csv --rep quat
 expect "compare -o" 0 "22 rows compared, 0 failed" -- bash -c "'$keyrot' compare walk10.csv walk10.csv -o summary.txt && cut -d';' -f1 summary.txt"
 
