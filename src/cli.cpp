@@ -56,23 +56,39 @@ std::vector<std::string> flags_of(const CLI::App& sub) {
     return flags;
 }
 
+/// The words of CLI11's "The following arguments were not expected: 0.5 --fsp".
+std::vector<std::string_view> unexpected_words(std::string_view message) {
+    std::vector<std::string_view> words;
+    const auto colon = message.rfind(": ");
+    if (colon == std::string_view::npos) return words;
+    for (std::string_view rest = message.substr(colon + 2); !rest.empty();) {
+        const auto space = std::min(rest.find(' '), rest.size());
+        if (space > 0) words.push_back(rest.substr(0, space));
+        rest.remove_prefix(std::min(space + 1, rest.size()));
+    }
+    return words;
+}
+
+/// For slerp's parameters given without -t (keyrot slerp Q0 Q1 0.5 0.25):
+/// " (did you mean '-t 0.25 0.5'?)", in increasing order (CLI11 lists
+/// them in an order of its own).
+std::string parameter_suggestion(std::vector<std::string_view> unexpected) {
+    const auto number = [](std::string_view w) { return parse_number(w).has_value(); };
+    if (unexpected.empty() || !std::ranges::all_of(unexpected, number)) return "";
+    std::ranges::stable_sort(unexpected, {}, [](std::string_view w) { return *parse_number(w); });
+    return did_you_mean(fmt::format("-t {}", fmt::join(unexpected, " ")));
+}
+
 /// For an unexpected flag (CLI11's "The following argument was not
 /// expected: --fsp"): " (did you mean '--fps'?)" when likely_meant finds
 /// one of the command's flags. A flag of other commands names them, as
 /// typed or as likely meant: reduce's "--fps" gives " (--fps is a flag of
 /// keyrot resample)", resample's "--tolerance" gives " (did you mean
 /// '--tol' of keyrot compare or reduce?)", not resample's "--to".
-std::string flag_suggestion(std::string_view command_name, const std::string& message) {
-    const auto colon = message.rfind(": ");
-    if (colon == std::string::npos) return "";
-    std::string_view rest = std::string_view(message).substr(colon + 2), typed;
-    while (!rest.empty() && !typed.starts_with("-")) {  // the first that looks like a flag
-        const auto space = std::min(rest.find(' '), rest.size());
-        typed = rest.substr(0, space);
-        rest.remove_prefix(std::min(space + 1, rest.size()));
-    }
-    const std::string word(typed.substr(0, typed.find('=')));
-    if (!word.starts_with("-")) return "";
+std::string flag_suggestion(std::string_view command_name, const std::vector<std::string_view>& unexpected) {
+    const auto typed = std::ranges::find_if(unexpected, [](std::string_view w) { return w.starts_with("-"); });
+    if (typed == unexpected.end()) return "";
+    const std::string word(typed->substr(0, typed->find('=')));
     // Every command defined (only the one named was, for start-up), to see
     // whose flags these are.
     CLI::App all;
@@ -215,7 +231,11 @@ Exit status: 0 success, 1 compare found differences, 2 invalid input or usage (o
         if (!known) throw usage_error(fmt::format("expected a command: {} (see keyrot --help)", listed_commands()));
         std::string what = e.what();
         if (what == "KEY is required") what = "KEY and ANSWER are missing: expected the key, then one answer or more";
-        if (dynamic_cast<const CLI::ExtrasError*>(&e)) what += flag_suggestion(first, what);
+        if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+            const std::vector<std::string_view> unexpected = unexpected_words(what);
+            const std::string parameter = first == "slerp" ? parameter_suggestion(unexpected) : "";
+            what += parameter.empty() ? flag_suggestion(first, unexpected) : parameter;
+        }
         if (dynamic_cast<const CLI::ValidationError*>(&e)) what += choice_suggestion(what);
         throw usage_error(fmt::format("{}: {} (see keyrot {} --help)", first, what, first));
     }
