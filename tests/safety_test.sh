@@ -178,6 +178,13 @@ expect "'{' and 70 MB of random bytes piped as glTF: one error, peak under 64 MB
     "read status kb < <(python3 '$tests/peak.py' '$keyrot' resample --from gltf < <(cat brace_junk.json) 2>/dev/null)
      echo \$status \$( ((kb < 65536)) && echo small || echo \$kb KB)"
 rm -f brace_junk.json
+# The same for a GLB's magic with a version other than 2 (glTF 1.0's binary
+# extension wrote 1), followed by random bytes.
+{ printf 'glTF\001\000\000\000'; head -c 70000000 /dev/urandom; } > magic_junk.glb
+expect "'glTF', version 1 and 70 MB of random bytes piped as glb: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \
+    "read status kb < <(python3 '$tests/peak.py' '$keyrot' resample --from glb < <(cat magic_junk.glb) 2>/dev/null)
+     echo \$status \$( ((kb < 65536)) && echo small || echo \$kb KB)"
+rm -f magic_junk.glb
 for source in /dev/zero /dev/urandom; do
     for from in csv ndjson json gltf glb bvh; do
         expect "$source as $from: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \

@@ -250,9 +250,11 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
 }
 
 /// Whether `start` (the first bytes read) could begin a glTF file: a GLB's
-/// magic, or a JSON object.
+/// magic and version 2, or a JSON object.
 bool could_begin_gltf(std::string_view start, format f) {
-    if (f == format::glb) return std::string_view("glTF").starts_with(start.substr(0, 4));
+    if (f == format::glb)
+        return std::string_view("glTF").starts_with(start.substr(0, 4)) &&
+               (start.size() < 8 || little_endian(start.data() + 4, 4) == 2);
     return could_begin_json(start, "{");
 }
 
