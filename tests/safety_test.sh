@@ -184,7 +184,14 @@ rm -f brace_junk.json
 expect "'glTF', version 1 and 70 MB of random bytes piped as glb: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \
     "read status kb < <(python3 '$tests/peak.py' '$keyrot' resample --from glb < <(cat magic_junk.glb) 2>/dev/null)
      echo \$status \$( ((kb < 65536)) && echo small || echo \$kb KB)"
-rm -f magic_junk.glb
+# And for one whose header states a length past the limit (4 GiB here).
+{ printf 'glTF\002\000\000\000\377\377\377\377'; head -c 70000000 /dev/urandom; } > long_junk.glb
+expect "a .glb header stating 4 GiB, piped: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \
+    "read status kb < <(python3 '$tests/peak.py' '$keyrot' resample --from glb < <(cat long_junk.glb) 2>/dev/null)
+     echo \$status \$( ((kb < 65536)) && echo small || echo \$kb KB)"
+expect_error "a .glb header stating 4 GiB, piped: the message" "keyrot: <stdin>: GLB header states 4294967295 bytes, more than 268435456: expected a smaller file (--max-bytes N raises the limit)" -- \
+    bash -c "cat long_junk.glb | '$keyrot' resample --from glb"
+rm -f magic_junk.glb long_junk.glb
 for source in /dev/zero /dev/urandom; do
     for from in csv ndjson json gltf glb bvh; do
         expect "$source as $from: one error, peak under 64 MB" 0 "2 small" -- timeout 60 bash -c \
