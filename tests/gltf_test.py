@@ -829,6 +829,10 @@ def bad_cases(work):
         ("magic.glb", b"glTx" + good[4:], "not a GLB file"),
         ("version.glb", good[:4] + struct.pack("<I", 1) + good[8:], "GLB version 1: expected 2"),
         ("truncated.glb", good[:-16], "truncated GLB: the header says"),
+        # A file read whole is truncated, whatever length its header states
+        # (from a pipe, a length past --max-bytes is refused before reading on).
+        ("stated.glb", good[:8] + struct.pack("<I", 2**32 - 1) + good[12:],
+         f"truncated GLB: the header says 4294967295 bytes, the file has {len(good)}"),
         ("header.glb", good[:9], "truncated GLB: 9 bytes"),
         ("chunk.glb", good[:12] + struct.pack("<I", 99999) + good[16:], "runs past the end"),
         ("json.glb", G.glb(b'{"asset": {"version": "2.0"}, "animations": [', binary), "invalid JSON"),
