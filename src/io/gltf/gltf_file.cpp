@@ -331,17 +331,17 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
     if (!seekable) {
         constexpr std::size_t block = std::size_t{1} << 16;
         if (bytes.size() < block) bytes.read(in, block - bytes.size());
-        // Nor is a .glb whose header states a length past the limit (where
-        // the input goes on: one read whole is said to be truncated).
-        if (f == format::glb && bytes.size() >= 12 && could_begin_gltf(bytes.view(), f) &&
-            in.peek() != std::istream::traits_type::eof())
-            if (const std::size_t stated = little_endian(bytes.view().data() + 8, 4); stated > max_bytes)
-                throw input_error(source, fmt::format("GLB header states {} bytes, more than {}: expected a smaller "
-                                                      "file (--max-bytes N raises the limit)",
-                                                      stated, max_bytes));
-        if (could_begin_gltf(bytes.view().substr(0, block), f))
+        if (could_begin_gltf(bytes.view().substr(0, block), f)) {
+            // Nor is a .glb whose header states a length past the limit (where
+            // the input goes on: one read whole is said to be truncated).
+            if (f == format::glb && bytes.size() >= 12 && in.peek() != std::istream::traits_type::eof())
+                if (const std::size_t stated = little_endian(bytes.view().data() + 8, 4); stated > max_bytes)
+                    throw input_error(source, fmt::format("GLB header states {} bytes, more than {}: expected a "
+                                                          "smaller file (--max-bytes N raises the limit)",
+                                                          stated, max_bytes));
             while (bytes.size() <= max_bytes && bytes.read(in, block)) {
             }
+        }
     }
     if (bytes.size() > max_bytes)
         throw input_error(
