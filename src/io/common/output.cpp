@@ -24,6 +24,7 @@
 #include <utility>
 
 #include "ground/text.hpp"
+#include "io/common/file_release.hpp"
 #include "keyrot/error.hpp"
 
 namespace keyrot {
@@ -159,14 +160,15 @@ std::string parent_of(const std::string& path) {
 /// exchanged with it (renameat2's RENAME_EXCHANGE), then removed from
 /// `temp`, rather than renamed over: ext4 (auto_da_alloc) writes a file
 /// renamed over another back to disk inside the rename, most of the tail
-/// of a large output's run. Durability is --fsync's. Anything else at
-/// `target`, none, or a filesystem that cannot exchange: a rename. Returns
-/// false, errno set, where the file could not be put in place.
+/// of a large output's run, and its space is freed without keyrot waiting
+/// for it. Durability is --fsync's. Anything else at `target`, none, or a
+/// filesystem that cannot exchange: a rename. Returns false, errno set,
+/// where the file could not be put in place.
 bool put_in_place(const std::string& temp, const std::string& target) {
     struct stat st;
     if (::lstat(target.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&
         ::renameat2(AT_FDCWD, temp.c_str(), AT_FDCWD, target.c_str(), RENAME_EXCHANGE) == 0) {
-        ::unlink(temp.c_str());  // (the old file: where the exchange could be made, so can this)
+        remove_replaced(temp, st.st_size);  // (the old file, now at temp)
         return true;
     }
     return std::rename(temp.c_str(), target.c_str()) == 0;

@@ -2,12 +2,16 @@
 #include "io/common/output.hpp"
 
 #include <doctest/doctest.h>
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "helpers.hpp"
 #include "keyrot/error.hpp"
@@ -20,7 +24,81 @@ std::size_t files_in(const std::filesystem::path& dir) {
     return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
 }
 
+/// The directories of /proc that are processes'.
+std::vector<std::filesystem::path> processes() {
+    std::vector<std::filesystem::path> found;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator("/proc", ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.find_first_not_of("0123456789") == std::string::npos) found.push_back(entry.path());
+    }
+    return found;
+}
+
+/// The descriptors of the processes that hold a file whose name began with
+/// `prefix` and was removed since: their count in each such process.
+std::vector<std::size_t> holders_of_removed(const std::string& prefix) {
+    std::vector<std::size_t> found;
+    std::error_code ec;
+    for (const auto& process : processes()) {
+        std::size_t descriptors = 0;
+        bool holds = false;
+        for (const auto& fd : std::filesystem::directory_iterator(process / "fd", ec)) {
+            ++descriptors;
+            const std::string target = std::filesystem::read_symlink(fd.path(), ec).string();
+            holds = holds || (target.starts_with(prefix) && target.ends_with(" (deleted)"));
+        }
+        if (holds) found.push_back(descriptors);
+    }
+    return found;
+}
+
 }  // namespace
+
+/// How many of this process's children have ended and not been reaped.
+std::size_t zombie_children() {
+    std::size_t zombies = 0;
+    for (const auto& process : processes()) {
+        std::ifstream in(process / "stat");
+        std::string stat((std::istreambuf_iterator<char>(in)), {});
+        // pid (comm) state ppid ...: after the last ')', as comm may hold anything
+        std::istringstream fields(stat.substr(stat.rfind(')') + 1));
+        char state = 0;
+        long ppid = 0;
+        if (fields >> state >> ppid && state == 'Z' && ppid == ::getpid()) ++zombies;
+    }
+    return zombies;
+}
+
+TEST_CASE("large replaced files are freed by processes of their own, which end holding nothing else") {
+    const keyrot::test::scratch s;
+    const auto path = s.dir / "out.csv";
+    constexpr std::size_t replaced = 8;
+    for (std::size_t i = 0; i < replaced; ++i) {
+        {
+            // past the size worth a process, and on disk: its blocks to be freed
+            std::ofstream(path) << std::string(5 << 20, 'x');
+            const int fd = ::open(path.c_str(), O_RDONLY);
+            REQUIRE(::fsync(fd) == 0);
+            ::close(fd);
+        }
+        write_file_atomically(path.string(), "new\n");
+        CHECK(s.read(path) == "new\n");
+        CHECK(files_in(s.dir) == 1);
+    }
+    // Each holder ends once it holds the last reference: nothing holds an old
+    // file for long, and while one does, only it and the pipe it waits on.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    std::vector<std::size_t> holders;
+    do {
+        holders = holders_of_removed((s.dir / ".out.csv.keyrot-").string());
+        for (std::size_t descriptors : holders) CHECK(descriptors == 2);
+    } while (!holders.empty() && std::chrono::steady_clock::now() < deadline);
+    CHECK(holders.empty());
+    // Ended holders are reaped as their places are used again: they do not
+    // pile up in a process that replaces many files.
+    CHECK(zombie_children() < replaced);
+}
 
 TEST_CASE("output_file: the old file until commit, the new one after, no temporary left") {
     const keyrot::test::scratch s;
