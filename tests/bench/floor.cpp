@@ -4,9 +4,12 @@
 // reader; the other prints as many shortest round-trip doubles as keyrot's
 // output holds (FRAMES rows of COLUMNS numbers: the frame, its time, then
 // rotation-like numbers from a table made before the clock matters), with
-// std::to_chars or with keyrot's number writer, into OUTPUT.
+// std::to_chars or with keyrot's number writer, into OUTPUT (an earlier
+// OUTPUT removed as keyrot removes a file it replaces).
 //
 // Usage: keyrot_floor INPUT.csv OUTPUT FRAMES COLUMNS [to_chars|keyrot]
+#include <sys/stat.h>
+
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
@@ -19,6 +22,7 @@
 
 #include "ground/warnings.hpp"
 #include "keyrot/error.hpp"
+#include "io/common/file_release.hpp"
 #include "io/common/number_writer.hpp"
 #include "io/open.hpp"
 
@@ -45,6 +49,10 @@ void print_all(const std::string& path, std::size_t frames, std::size_t columns,
     std::mt19937_64 gen(7);
     std::uniform_real_distribution<double> u(-1, 1);
     for (double& v : table) v = u(gen);
+    // An earlier output is freed as keyrot frees the one it replaces, not
+    // in this program's time (where the filesystem discards freed blocks).
+    struct stat st;
+    if (::lstat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) keyrot::remove_replaced(path, st.st_size);
     std::FILE* out = std::fopen(path.c_str(), "wb");
     if (!out) {
         std::perror(path.c_str());
