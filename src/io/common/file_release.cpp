@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <sched.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -21,16 +22,19 @@ constexpr off_t worth_a_process = off_t{4} << 20;
 /// Where a holder runs: the process that keeps the last reference to a
 /// removed file until keyrot has closed its own, then ends, and the kernel
 /// frees the file's blocks in its exit. Holders share keyrot's memory
-/// (CLONE_VM: nothing to copy), so each has a stack here, used again only
-/// once the kernel has cleared `running` at the holder's end
-/// (CLONE_CHILD_CLEARTID). They signal no one at their end: keyrot reaps
-/// one when it uses its stack again, and init those keyrot leaves.
+/// (CLONE_VM: nothing to copy), so each place has a stack, mapped when
+/// first used and used again only once the kernel has cleared `running` at
+/// the holder's end (CLONE_CHILD_CLEARTID). Holders signal no one at their
+/// end: keyrot reaps one when it uses its place again, and init those
+/// keyrot leaves. (Zeros at first, with no initialiser: a run that
+/// replaces no large file touches none of this.)
 struct holder {
-    alignas(64) std::array<std::byte, 64 * 1024> stack;
-    pid_t running = 0;  // nonzero while a holder runs on this stack
-    pid_t pid = 0;      // the holder to reap, if any
-    int file = -1, gate = -1;
+    pid_t running;  // nonzero while a holder runs here
+    pid_t pid;      // the holder to reap, if any
+    int file, gate;
+    std::byte* stack;
 };
+constexpr std::size_t stack_bytes = 64 * 1024;
 std::array<holder, 4> holders;
 
 holder* claim_holder() noexcept {
@@ -39,7 +43,14 @@ holder* claim_holder() noexcept {
         if (!std::atomic_ref<pid_t>(h.running).compare_exchange_strong(ended, -1)) continue;
         if (h.pid > 0) ::waitpid(h.pid, nullptr, static_cast<int>(__WCLONE));
         h.pid = 0;
-        return &h;
+        if (!h.stack) {
+            void* stack = ::mmap(nullptr, stack_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_STACK,
+                                 -1, 0);
+            if (stack != MAP_FAILED) h.stack = static_cast<std::byte*>(stack);
+        }
+        if (h.stack) return &h;
+        std::atomic_ref<pid_t>(h.running).store(0);
+        return nullptr;
     }
     return nullptr;
 }
@@ -75,8 +86,7 @@ bool hand_over(int file) noexcept {
     sigset_t all, old;
     ::sigfillset(&all);
     ::pthread_sigmask(SIG_SETMASK, &all, &old);
-    h->pid = ::clone(hold, h->stack.data() + h->stack.size(), CLONE_VM | CLONE_CHILD_CLEARTID, h, nullptr, nullptr,
-                     &h->running);
+    h->pid = ::clone(hold, h->stack + stack_bytes, CLONE_VM | CLONE_CHILD_CLEARTID, h, nullptr, nullptr, &h->running);
     ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
     const bool started = h->pid > 0;
     if (!started) std::atomic_ref<pid_t>(h->running).store(0);
