@@ -25,13 +25,22 @@ std::size_t files_in(const std::filesystem::path& dir) {
     return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(dir), {}));
 }
 
+/// The entries of `dir`, as far as they can be read: a process's entries
+/// in /proc go when it ends, which other tests' processes do all the time.
+std::vector<std::filesystem::path> entries(const std::filesystem::path& dir) {
+    std::vector<std::filesystem::path> found;
+    std::error_code ec;
+    for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+        found.push_back(it->path());
+    return found;
+}
+
 /// The directories of /proc that are processes'.
 std::vector<std::filesystem::path> processes() {
     std::vector<std::filesystem::path> found;
-    std::error_code ec;
-    for (const auto& entry : std::filesystem::directory_iterator("/proc", ec)) {
-        const std::string name = entry.path().filename().string();
-        if (name.find_first_not_of("0123456789") == std::string::npos) found.push_back(entry.path());
+    for (const auto& entry : entries("/proc")) {
+        const std::string name = entry.filename().string();
+        if (name.find_first_not_of("0123456789") == std::string::npos) found.push_back(entry);
     }
     return found;
 }
@@ -39,10 +48,10 @@ std::vector<std::filesystem::path> processes() {
 /// How many processes hold a file whose name began with `prefix` and was removed since.
 std::size_t holders_of_removed(const std::string& prefix) {
     std::size_t found = 0;
-    std::error_code ec;
     for (const auto& process : processes()) {
-        for (const auto& fd : std::filesystem::directory_iterator(process / "fd", ec)) {
-            const std::string target = std::filesystem::read_symlink(fd.path(), ec).string();
+        for (const auto& fd : entries(process / "fd")) {
+            std::error_code ec;
+            const std::string target = std::filesystem::read_symlink(fd, ec).string();
             if (target.starts_with(prefix) && target.ends_with(" (deleted)")) {
                 ++found;
                 break;
