@@ -37,6 +37,9 @@ struct holder {
 constexpr std::size_t stack_bytes = 64 * 1024;
 std::array<holder, 4> holders;
 
+/// `h` free for another holder (none started in it, or the claim undone).
+void free_place(holder& h) noexcept { std::atomic_ref<pid_t>(h.running).store(0); }
+
 holder* claim_holder() noexcept {
     for (holder& h : holders) {
         pid_t ended = 0;
@@ -49,7 +52,7 @@ holder* claim_holder() noexcept {
             if (stack != MAP_FAILED) h.stack = static_cast<std::byte*>(stack);
         }
         if (h.stack) return &h;
-        std::atomic_ref<pid_t>(h.running).store(0);
+        free_place(h);
         return nullptr;
     }
     return nullptr;
@@ -79,7 +82,7 @@ bool hand_over(int file) noexcept {
     int gate[2];
     if (!h) return false;
     if (::pipe2(gate, O_CLOEXEC) != 0) {
-        std::atomic_ref<pid_t>(h->running).store(0);
+        free_place(*h);
         return false;
     }
     h->file = file, h->gate = gate[0];
@@ -89,7 +92,7 @@ bool hand_over(int file) noexcept {
     h->pid = ::clone(hold, h->stack + stack_bytes, CLONE_VM | CLONE_CHILD_CLEARTID, h, nullptr, nullptr, &h->running);
     ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
     const bool started = h->pid > 0;
-    if (!started) std::atomic_ref<pid_t>(h->running).store(0);
+    if (!started) free_place(*h);
     ::close(gate[0]);
     if (started) ::close(file);  // before the gate: the holder's reference is to be the last
     ::close(gate[1]);

@@ -34,6 +34,9 @@ std::uint32_t little_endian(const char* p, int bytes) {
 
 constexpr std::uint32_t glb_json_chunk = 0x4E4F534A, glb_bin_chunk = 0x004E4942;
 
+// A GLB header: the magic, then the version and the stated length of the file.
+constexpr std::size_t glb_version_at = 4, glb_length_at = 8;
+
 /// A .glb's chunks: the JSON text, and the BIN chunk if there is one.
 std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::string_view bytes,
                                                                         const std::string& source) {
@@ -41,9 +44,9 @@ std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::str
         throw input_error(source, fmt::format("truncated GLB: {} bytes, expected a 12-byte header", bytes.size()));
     if (bytes.substr(0, 4) != "glTF")
         throw input_error(source, "not a GLB file: expected the magic 'glTF' at its start");
-    if (const auto version = little_endian(bytes.data() + 4, 4); version != 2)
+    if (const auto version = little_endian(bytes.data() + glb_version_at, 4); version != 2)
         throw input_error(source, fmt::format("GLB version {}: expected 2 (glTF 2.0)", version));
-    const std::size_t length = little_endian(bytes.data() + 8, 4);
+    const std::size_t length = little_endian(bytes.data() + glb_length_at, 4);
     if (length > bytes.size())
         throw input_error(
             source, fmt::format("truncated GLB: the header says {} bytes, the file has {}", length, bytes.size()));
@@ -254,7 +257,7 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
 bool could_begin_gltf(std::string_view start, format f) {
     if (f == format::glb)
         return std::string_view("glTF").starts_with(start.substr(0, 4)) &&
-               (start.size() < 8 || little_endian(start.data() + 4, 4) == 2);
+               (start.size() < glb_length_at || little_endian(start.data() + glb_version_at, 4) == 2);
     return could_begin_json(start, "{");
 }
 
@@ -335,7 +338,7 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
             // Nor is a .glb whose header states a length past the limit (where
             // the input goes on: one read whole is said to be truncated).
             if (f == format::glb && bytes.size() >= 12 && in.peek() != std::istream::traits_type::eof())
-                if (const std::size_t stated = little_endian(bytes.view().data() + 8, 4); stated > max_bytes)
+                if (const std::size_t stated = little_endian(bytes.view().data() + glb_length_at, 4); stated > max_bytes)
                     throw input_error(source, fmt::format("GLB header states {} bytes, more than {}: expected a "
                                                           "smaller file (--max-bytes N raises the limit)",
                                                           stated, max_bytes));
