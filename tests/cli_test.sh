@@ -9,8 +9,8 @@ trap 'rm -rf "$work"' EXIT
 # shellcheck source=tests/expect.sh
 source "$(dirname "$0")/expect.sh"
 
-# Seed 000's worked example, resampled from the homework file.
-expect "seed 000 example" 0 "frame,time,qx,qy,qz,qw
+# The textbook example (identity to 90 degrees about z, halfway 45), resampled from the homework file.
+expect "textbook example" 0 "frame,time,qx,qy,qz,qw
 0,0,0,0,0,1
 1,0.5,0,0,0.3827,0.9239
 2,1,0,0,0.7071,0.7071" -- \
@@ -123,16 +123,16 @@ expect "batch status" 2 "" -- bash -c "exit $?"
 expect "batch files" 0 "turntable.json
 walk.json" -- ls "$work/out"
 
-# ---- slerp: the seeds' worked examples
-expect "seed 000 slerp" 0 "t,qx,qy,qz,qw
+# ---- slerp: textbook worked examples
+expect "textbook slerp" 0 "t,qx,qy,qz,qw
 0.5,0,0,0.3827,0.9239" -- \
     "$keyrot" slerp --quat-order xyzw 0,0,0,1 0,0,0.7071067811865476,0.7071067811865476 -t 0.5 --rep quat --precision 4
-# seed 003's route: axis-angle in, (q r^-1)^a r, axis-angle out. Halfway between
+# The power form's route: axis-angle in, (q r^-1)^a r, axis-angle out. Halfway between
 # 90 about x and 90 about y is 2 acos(sqrt(2/3)) = 70.52877936550931 about (1,1,0)/sqrt 2.
-expect "seed 003 route" 0 "t,ax,ay,az,angle
+expect "power form route" 0 "t,ax,ay,az,angle
 0.5,0.707106781187,0.707106781187,0,70.528779365509" -- \
     "$keyrot" slerp --from-rep axis-angle 1,0,0,90 0,1,0,90 -t 0.5 --precision 12
-# seed 000's -170 -> 160 about z: the short way through 180, or the long way through 0
+# -170 -> 160 degrees about z, the classic Euler-angle pitfall: the short way through 180, or the long way through 0
 expect "short way" 0 "t,ax,ay,az,angle
 0,0,0,-1,170
 0.5,0,0,1,175

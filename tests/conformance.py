@@ -74,7 +74,7 @@ def qexp(v):
 
 
 def slerp_power(a, b, h):
-    """The power form a (a^-1 b)^h of seed 003, no sign flip. (The sine form
+    """The power form a (a^-1 b)^h (Shoemake 1985), no sign flip. (The sine form
     loses half its digits through acos when the keys nearly coincide.)"""
     return qmul(a, qexp(h * qlog(qmul(qconj(a), b))))
 

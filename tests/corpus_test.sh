@@ -71,7 +71,7 @@ expect_error "stdin pipe, no temporary directory" \
     "keyrot: cannot store standard input in a temporary file: \$TMPDIR '/nonexistent': No such file or directory" -- \
     bash -c "cat '$tests/../data/walk.csv' | TMPDIR=/nonexistent '$keyrot' resample"
 
-# Accepted quietly: every variant resamples to seed 000's example.
+# Accepted quietly: every variant resamples to the textbook example.
 want="frame,time,qw,qx,qy,qz
 0,0,1,0,0,0
 1,0.5,0.92388,0,0,0.382683

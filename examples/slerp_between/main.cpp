@@ -1,5 +1,5 @@
 // Slerp between two rotations with keyrot's library: the identity and a
-// quarter turn about z (seed 000's worked example), in five steps, printed
+// quarter turn about z (the textbook example: halfway is 45 degrees), in five steps, printed
 // as axis-angle in degrees.
 #include <cstdio>
 #include <keyrot/convert.hpp>

@@ -16,14 +16,14 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-/// Shoemake's sine form (seed 000, method 2; Szeliski 2.45).
+/// Shoemake's sine form (Szeliski, eq. 2.45).
 quat slerp_sine(quat a, quat b, double t) {
     const double omega = std::acos(std::fmax(-1.0, std::fmin(1.0, dot(a, b))));
     const double p = std::sin((1 - t) * omega) / std::sin(omega), q = std::sin(t * omega) / std::sin(omega);
     return {p * a.w + q * b.w, p * a.x + q * b.x, p * a.y + q * b.y, p * a.z + q * b.z};
 }
 
-/// Seed 003's power form (q r^-1)^alpha r, the power written as seed 003 does:
+/// The power form (q r^-1)^alpha r, the power written out as a turn:
 /// r^alpha = (cos(alpha theta/2), sin(alpha theta/2) k).
 quat slerp_power(quat r, quat q, double alpha) {
     const quat d = q * conjugate(r);
@@ -53,10 +53,10 @@ TEST_CASE("method and path names") {
     CHECK_FALSE(parse<path>("long"));
 }
 
-TEST_CASE("seed 000 worked example: halfway from identity to 90 degrees about z") {
+TEST_CASE("textbook example: halfway from identity to 90 degrees about z") {
     const double s = std::sqrt(2.0) / 2;
     const quat q = slerp(quat{1, 0, 0, 0}, quat{s, 0, 0, s}, 0.5);
-    // [0 0 0.3827 0.9239] in the seed's (x, y, z, w); exactly sin and cos of 22.5 degrees
+    // [0 0 0.3827 0.9239] as (x, y, z, w) to four places; exactly sin and cos of 22.5 degrees
     CHECK(near(q.z, 0.3827, 5e-5));
     CHECK(near(q.w, 0.9239, 5e-5));
     CHECK(near(q.z, std::sin(pi / 8), 2e-16));
@@ -65,14 +65,14 @@ TEST_CASE("seed 000 worked example: halfway from identity to 90 degrees about z"
     CHECK(q.y == 0);
 }
 
-TEST_CASE("the three slerp formulations of the seeds agree") {
+TEST_CASE("three formulations of slerp agree: atan2, sine and power forms") {
     keyrot::test::random_rotations rng(4);
     for (int n = 0; n < 300; ++n) {
         quat a = rng.next(), b = rng.next();
         if (dot(a, b) < 0) b = -b;  // the sine and power forms take the short way only then
         const double t = rng.uniform(0, 1);
         CAPTURE(n);
-        const quat ours = slerp(a, b, t);  // Szeliski's atan2 form (seed 004)
+        const quat ours = slerp(a, b, t);  // Szeliski's atan2 form (Algorithm 2.1)
         CHECK(max_diff(ours, slerp_sine(a, b, t)) <= 1e-14);
         CHECK(max_diff(ours, slerp_power(a, b, t)) <= 1e-14);
     }
@@ -175,7 +175,7 @@ TEST_CASE("step holds the key; euler interpolates the angles linearly") {
     t.euler = zyx;
     const rotation_curve step(t, method::step, path::shortest);
     CHECK(max_diff(step.at(0, 0.99), quat{}) == 0);
-    // seed 000's "-170 versus 160" contrast: keys as Euler angles -170 and 160 about z
+    // the classic "-170 versus 160" contrast: keys as Euler angles -170 and 160 about z
     track e;
     e.euler = zyx;
     for (double deg : {-170.0, 160.0}) {

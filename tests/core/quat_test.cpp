@@ -18,10 +18,10 @@ TEST_CASE("Hamilton's product: ij = k, jk = i, ki = j, i^2 = -1") {
     CHECK(max_diff(k * i, j) == 0);
     CHECK(max_diff(j * i, -k) == 0);
     CHECK(max_diff(i * i, quat{-1, 0, 0, 0}) == 0);
-    CHECK(max_diff(i * j * k, quat{-1, 0, 0, 0}) == 0);  // ijk = -1 (seed 003)
+    CHECK(max_diff(i * j * k, quat{-1, 0, 0, 0}) == 0);  // ijk = -1 (Hamilton's rule)
 }
 
-TEST_CASE("product agrees with seed 003's expansion and its vector form") {
+TEST_CASE("product agrees with its expansion in components and its vector form") {
     keyrot::test::random_rotations rng(3);
     for (int n = 0; n < 100; ++n) {
         const quat p = rng.next(), q = rng.next();
