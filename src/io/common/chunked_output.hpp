@@ -37,6 +37,9 @@ public:
         writer_.join();  // after a write under way (an error elsewhere): it ends before the file goes
     }
     std::string& text() noexcept { return text_; }
+    /// Room for `bytes` in the buffer put() gives in exchange for the first
+    /// text it takes (the texts put out then go round, never shrinking).
+    void reserve_exchange(std::size_t bytes) { spare_.reserve(bytes); }
     void maybe_flush() {
         if (text_.size() >= chunk) put(text_);
     }

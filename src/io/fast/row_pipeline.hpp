@@ -171,6 +171,15 @@ private:
         }
         batch_.rows.reserve(batch_rows);
         if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
+        // The texts the batches are formatted into go round between the
+        // threads: each made large enough for a batch once (as large as the
+        // rows formatted here so far, and a quarter more for longer numbers
+        // later), not grown in steps, each a copy into pages never touched.
+        if (!workers.empty() && workers.front()->own) {
+            text_room_ = out_.text().size() * batch_rows / inline_limit * 5 / 4;
+            for (auto& w : workers) w->text.reserve(text_room_);
+            out_.reserve_exchange(text_room_);
+        }
         workers_.reserve(workers.size());
         for (auto& w : workers) {
             if (!try_start_thread(w->thread, [this, &w = *w] { consume(w); })) break;
@@ -221,8 +230,7 @@ private:
         std::unique_lock lock(mutex_);
         if (written_ != number && !parked_) {
             parked_ = parked_text{number, std::move(text)};
-            std::swap(text, parked_buffer_);
-            text.clear();
+            text = spare_text();
             return true;
         }
         changed_.wait(lock, [&] { return written_ == number || failure_; });
@@ -237,10 +245,22 @@ private:
             lock.unlock();
             out_.put(parked);  // (which leaves it an empty buffer)
             lock.lock();
-            parked_buffer_ = std::move(parked);
+            spare_texts_.push_back(std::move(parked));
         }
         changed_.notify_all();
         return true;
+    }
+    /// An empty text with room for a batch, for a thread that parks its own:
+    /// one that a parked text was put out from, else a new one. Under mutex_.
+    std::string spare_text() {
+        std::string text;
+        if (spare_texts_.empty()) {
+            text.reserve(text_room_);
+        } else {
+            text = std::move(spare_texts_.back());
+            spare_texts_.pop_back();
+        }
+        return text;
     }
     bool take(batch& b) {
         std::unique_lock lock(mutex_);
@@ -300,7 +320,11 @@ private:
     std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
     std::optional<parked_text> parked_;  // formatted before its turn
-    std::string parked_buffer_;          // what the thread that parks next goes on with
+    // Empty, for the threads that park to go on with: a text parked while a
+    // parked one is put out takes another, and each is kept, never freed
+    // and made again on pages never touched.
+    std::vector<std::string> spare_texts_;
+    std::size_t text_room_ = 0;             // what each text is made room for
     std::vector<batch> spare_;  // formatted, for the next batches, so that no row lands on a fresh page
     std::mutex mutex_;
     std::condition_variable changed_;
