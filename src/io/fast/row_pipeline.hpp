@@ -324,7 +324,7 @@ private:
     // parked one is put out takes another, and each is kept, never freed
     // and made again on pages never touched.
     std::vector<std::string> spare_texts_;
-    std::size_t text_room_ = 0;             // what each text is made room for
+    std::size_t text_room_ = 0;  // what each text is made room for
     std::vector<batch> spare_;  // formatted, for the next batches, so that no row lands on a fresh page
     std::mutex mutex_;
     std::condition_variable changed_;
