@@ -34,14 +34,16 @@ std::uint32_t little_endian(const char* p, int bytes) {
 
 constexpr std::uint32_t glb_json_chunk = 0x4E4F534A, glb_bin_chunk = 0x004E4942;
 
-// A GLB header: the magic, then the version and the stated length of the file.
-constexpr std::size_t glb_version_at = 4, glb_length_at = 8;
+// A GLB header: the magic, then the version and the stated length of the
+// file, each 4 bytes; the chunks follow.
+constexpr std::size_t glb_version_at = 4, glb_length_at = 8, glb_header_bytes = 12;
 
 /// A .glb's chunks: the JSON text, and the BIN chunk if there is one.
 std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::string_view bytes,
                                                                         const std::string& source) {
-    if (bytes.size() < 12)
-        throw input_error(source, fmt::format("truncated GLB: {} bytes, expected a 12-byte header", bytes.size()));
+    if (bytes.size() < glb_header_bytes)
+        throw input_error(source, fmt::format("truncated GLB: {} bytes, expected a {}-byte header", bytes.size(),
+                                              glb_header_bytes));
     if (bytes.substr(0, 4) != "glTF")
         throw input_error(source, "not a GLB file: expected the magic 'glTF' at its start");
     if (const auto version = little_endian(bytes.data() + glb_version_at, 4); version != 2)
@@ -56,7 +58,7 @@ std::pair<std::string_view, std::optional<std::string_view>> glb_chunks(std::str
                                               length, bytes.size() - length));
     std::string_view json;
     std::optional<std::string_view> bin;
-    for (std::size_t at = 12, n = 0; at < length; ++n) {
+    for (std::size_t at = glb_header_bytes, n = 0; at < length; ++n) {
         if (length - at < 8) throw input_error(source, fmt::format("truncated GLB: chunk {} has no full header", n));
         const std::size_t size = little_endian(bytes.data() + at, 4);
         const std::uint32_t type = little_endian(bytes.data() + at + 4, 4);
@@ -257,7 +259,7 @@ std::pair<std::string_view, std::size_t> buffer_view(gltf_file& file, const gltf
 bool could_begin_gltf(std::string_view start, format f) {
     if (f == format::glb)
         return std::string_view("glTF").starts_with(start.substr(0, 4)) &&
-               (start.size() < glb_length_at || little_endian(start.data() + glb_version_at, 4) == 2);
+               (start.size() < glb_version_at + 4 || little_endian(start.data() + glb_version_at, 4) == 2);
     return could_begin_json(start, "{");
 }
 
@@ -337,7 +339,7 @@ gltf_file load_gltf(std::istream& in, format f, const std::string& source, const
         if (could_begin_gltf(bytes.view().substr(0, block), f)) {
             // Nor is a .glb whose header states a length past the limit (where
             // the input goes on: one read whole is said to be truncated).
-            if (f == format::glb && bytes.size() >= 12 && in.peek() != std::istream::traits_type::eof())
+            if (f == format::glb && bytes.size() >= glb_header_bytes && in.peek() != std::istream::traits_type::eof())
                 if (const std::size_t stated = little_endian(bytes.view().data() + glb_length_at, 4); stated > max_bytes)
                     throw input_error(source, fmt::format("GLB header states {} bytes, more than {}: expected a "
                                                           "smaller file (--max-bytes N raises the limit)",
