@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "helpers.hpp"
@@ -35,6 +36,63 @@ TEST_CASE("product agrees with its expansion in components and its vector form")
         const vec3 vec = (a * w) + (e * v) + cross(v, w);
         CHECK(max_diff(p * q, quat{a * e - dot(v, w), vec.x, vec.y, vec.z}) <= 1e-15);
     }
+}
+
+namespace {
+
+/// Dot2 (Ogita, Rump and Oishi) as a plain loop from sum = err = +0, every
+/// term through TwoProduct and TwoSum: the form that defines the bits of
+/// keyrot's products. The product's FMA clone, vectorised by the compiler,
+/// must give the same bits. GCC 12 at -O3 broke them for a loop rearranged
+/// to start from the first product, which is the same sum in IEEE
+/// arithmetic: 15% of random products' components came out different.
+template <std::size_t N>
+double dot2_from_zero(const double (&x)[N], const double (&y)[N]) {
+    double sum = 0, err = 0;
+    for (std::size_t i = 0; i < N; ++i) {
+        const double p = x[i] * y[i], p_err = std::fma(x[i], y[i], -p);
+        const double t = sum + p, z = t - sum;
+        err += (sum - (t - z)) + (p - z) + p_err;
+        sum = t;
+    }
+    return sum + err;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b)); }
+
+}  // namespace
+
+TEST_CASE("dot2 and the product (its FMA clone where the CPU has one) give the plain loop's bits: signed zeros, underflow, cancellation") {
+    // Products that underflow to -0 (with an error of -0), exact zeros of
+    // either sign, subnormals, and terms that cancel.
+    const double pool[] = {0.0, 1e-200, 1e-170, 5e-324, 3e-310, 1.0, 1e16, 0.1, 0.7071067811865476, 1e300};
+    keyrot::test::random_rotations rng(11);
+    const auto value = [&] {
+        const double v = rng.uniform(0, 1) < 0.6 ? pool[static_cast<std::size_t>(rng.uniform(0, 10)) % 10]
+                                                 : rng.uniform(-2, 2);
+        return rng.uniform(0, 1) < 0.5 ? -v : v;
+    };
+    int zeros = 0, negative_zero_first = 0;
+    for (int n = 0; n < 200000; ++n) {
+        const double x[4] = {value(), value(), value(), value()}, y[4] = {value(), value(), value(), value()};
+        const double x2[2] = {x[0], x[1]}, y2[2] = {y[0], y[1]}, x3[3] = {x[0], x[1], x[2]}, y3[3] = {y[0], y[1], y[2]};
+        CAPTURE(n);
+        REQUIRE(same_bits(dot2(x2, y2), dot2_from_zero(x2, y2)));
+        REQUIRE(same_bits(dot2(x3, y3), dot2_from_zero(x3, y3)));
+        REQUIRE(same_bits(dot2(x, y), dot2_from_zero(x, y)));
+        zeros += dot2(x2, y2) == 0;
+        negative_zero_first += x[0] * y[0] == 0 && std::signbit(x[0] * y[0]);
+        // The product (built with FMA where the CPU has it) is four of them.
+        const quat a{x[0], x[1], x[2], x[3]}, b{y[0], y[1], y[2], y[3]}, ab = a * b;
+        REQUIRE(same_bits(ab.w, dot2_from_zero({a.w, -a.x, -a.y, -a.z}, {b.w, b.x, b.y, b.z})));
+        REQUIRE(same_bits(ab.x, dot2_from_zero({a.w, a.x, a.y, -a.z}, {b.x, b.w, b.z, b.y})));
+        REQUIRE(same_bits(ab.y, dot2_from_zero({a.w, -a.x, a.y, a.z}, {b.y, b.z, b.w, b.x})));
+        REQUIRE(same_bits(ab.z, dot2_from_zero({a.w, a.x, -a.y, a.z}, {b.z, b.y, b.x, b.w})));
+    }
+    // Zero sums were met, and first products of -0 (where the loop's
+    // first step gives +0), not just nonzero sums.
+    CHECK(zeros > 1000);
+    CHECK(negative_zero_first > 1000);
 }
 
 TEST_CASE("conjugate is the inverse of a unit quaternion") {
