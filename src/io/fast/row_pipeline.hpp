@@ -187,26 +187,30 @@ private:
         }
     }
     void hand_over() {
-        std::unique_lock lock(mutex_);
-        changed_.wait(lock, [this] { return queue_.size() < max_batches || failure_; });
-        if (failure_) std::rethrow_exception(failure_);
-        queue_.push_back(std::move(batch_));
-        if (spare_.empty()) {
-            batch_ = batch{};
-            batch_.rows.reserve(batch_rows);
-        } else {
-            batch_ = std::move(spare_.back());
-            spare_.pop_back();
+        {
+            std::unique_lock lock(mutex_);
+            room_.wait(lock, [this] { return queue_.size() < max_batches || failure_; });
+            if (failure_) std::rethrow_exception(failure_);
+            queue_.push_back(std::move(batch_));
+            if (spare_.empty()) {
+                batch_ = batch{};
+                batch_.rows.reserve(batch_rows);
+            } else {
+                batch_ = std::move(spare_.back());
+                spare_.pop_back();
+            }
         }
+        work_.notify_one();
         batch_.number = ++batches_;
         squad_index_ = packed_row::none;
         if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
-        changed_.notify_all();
     }
     void stop() {
-        const std::lock_guard lock(mutex_);
-        done_ = true;
-        changed_.notify_all();
+        {
+            const std::lock_guard lock(mutex_);
+            done_ = true;
+        }
+        work_.notify_all();
     }
     void consume(worker& w) {
         try {
@@ -215,9 +219,11 @@ private:
                 if (w.own && !put_in_turn(b.number, w.text)) return;
             }
         } catch (...) {
-            const std::lock_guard lock(mutex_);
-            if (!failure_) failure_ = std::current_exception();
-            changed_.notify_all();
+            {
+                const std::lock_guard lock(mutex_);
+                if (!failure_) failure_ = std::current_exception();
+            }
+            for (auto* waiting : {&work_, &room_, &turn_}) waiting->notify_all();
         }
     }
     /// Puts out batch `number`'s text in its turn, then any parked text
@@ -233,7 +239,7 @@ private:
             text = spare_text();
             return true;
         }
-        changed_.wait(lock, [&] { return written_ == number || failure_; });
+        turn_.wait(lock, [&] { return written_ == number || failure_; });
         if (failure_) return false;
         lock.unlock();
         out_.put(text);  // this batch's turn: no other thread writes now
@@ -247,7 +253,8 @@ private:
             lock.lock();
             spare_texts_.push_back(std::move(parked));
         }
-        changed_.notify_all();
+        lock.unlock();
+        turn_.notify_all();
         return true;
     }
     /// An empty text with room for a batch, for a thread that parks its own:
@@ -263,16 +270,18 @@ private:
         return text;
     }
     bool take(batch& b) {
-        std::unique_lock lock(mutex_);
-        changed_.wait(lock, [this] { return !queue_.empty() || done_ || failure_; });
-        if (queue_.empty() || failure_) return false;
-        if (b.rows.capacity() != 0) {  // formatted: its memory for the next batches
-            b.clear();
-            spare_.push_back(std::move(b));
+        {
+            std::unique_lock lock(mutex_);
+            work_.wait(lock, [this] { return !queue_.empty() || done_ || failure_; });
+            if (queue_.empty() || failure_) return false;
+            if (b.rows.capacity() != 0) {  // formatted: its memory for the next batches
+                b.clear();
+                spare_.push_back(std::move(b));
+            }
+            b = std::move(queue_.front());
+            queue_.pop_front();
         }
-        b = std::move(queue_.front());
-        queue_.pop_front();
-        changed_.notify_all();
+        room_.notify_one();
         return true;
     }
     void format(const batch& b, worker& w) {
@@ -326,8 +335,11 @@ private:
     std::vector<std::string> spare_texts_;
     std::size_t text_room_ = 0;  // what each text is made room for
     std::vector<batch> spare_;  // formatted, for the next batches, so that no row lands on a fresh page
+    // One lock; a condition each for what a thread waits for (a batch, room
+    // for one, its turn to put out), so that a change wakes only the threads
+    // it concerns, and after the lock is let go.
     std::mutex mutex_;
-    std::condition_variable changed_;
+    std::condition_variable work_, room_, turn_;
     bool done_ = false;
     std::exception_ptr failure_;
     std::vector<std::unique_ptr<worker>> workers_;  // their threads start once everything else exists
