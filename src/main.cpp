@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         opts->progress = ::isatty(STDERR_FILENO) == 1;
+        opts->terminal_out = ::isatty(STDOUT_FILENO) == 1;
         return keyrot::run(*opts, std::cin, std::cout, std::cerr);
     } catch (const keyrot::error& e) {
         keyrot::print_error(std::cerr, e.what());

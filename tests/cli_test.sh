@@ -182,6 +182,13 @@ expect "compare negated" 0 "5 rows compared, 0 failed; largest difference 0 deg 
 "$keyrot" convert "$work/key.csv" -o "$work/key.glb"
 expect "compare with its glTF" 0 "5 rows compared, 0 failed" -- \
     bash -c "'$keyrot' compare '$work/key.csv' '$work/key.glb' | cut -d';' -f1"
+# glb is binary: a terminal (script(1) gives the command one) gets one line
+# and status 2 instead, as gzip refuses; a pipe, or -o /dev/stdout, gets it.
+expect "glb not to a terminal" 2 "keyrot: glb is binary, and standard output is a terminal: expected -o FILE.glb, a pipe or > FILE (--to gltf writes text; -o /dev/stdout writes glb here all the same)" -- \
+    bash -c "script -qec \"'$keyrot' convert '$work/key.csv' --to glb\" /dev/null | tr -d '\r'; exit \${PIPESTATUS[0]}"
+expect "glb to a terminal named" 0 "glTF" -- \
+    bash -c "script -qec \"'$keyrot' convert '$work/key.csv' --to glb -o /dev/stdout\" /dev/null | head -c 4"
+expect "glb through a pipe" 0 "glTF" -- bash -c "'$keyrot' convert '$work/key.csv' --to glb | head -c 4"
 expect "compare 0.5 off" 1 "5 rows compared, 1 failed; largest difference 0.5 deg at frame 2 (0.5 s)" -- \
     "$keyrot" compare "$work/key.csv" "$work/off.csv"
 expect "compare 0.5 off reason" 1 "keyrot: $work/off.csv: frame 2 (0.5 s): rotation differs by 0.5 deg (tolerance 0.01)" -- \

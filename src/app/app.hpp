@@ -51,8 +51,9 @@ struct options {
     /// a line, default_max_bytes for a document)
     std::optional<std::size_t> max_bytes;
     std::optional<std::string> animation;              ///< --animation: glTF, the one animation to read
-    unsigned jobs = 0;      ///< --jobs: files converted at once; 0 = the number of cores
-    bool progress = false;  ///< a progress line on err for several files (main: when stderr is a terminal)
+    unsigned jobs = 0;          ///< --jobs: files converted at once; 0 = the number of cores
+    bool progress = false;      ///< a progress line on err for several files (main: when stderr is a terminal)
+    bool terminal_out = false;  ///< standard output is a terminal (main), where no binary output is written
 
     // slerp
     std::string q0, q1;            ///< comma-separated operands

@@ -51,11 +51,16 @@ write_options writing(const options& o, const std::optional<euler_seq>& input_eu
     return w;
 }
 
-void check_output_format(const options& o, format out) {
+void check_output_format(const options& o, format out, const std::optional<std::string>& target) {
     if (o.compact && !is_gltf(out))
         throw usage_error(fmt::format("--compact stores glTF rotations as 16-bit integers, and {} has no such "
                                       "storage: expected --to gltf or glb, or -o with one of their extensions",
                                       to_string(out)));
+    // As gzip does: binary bytes would garble the terminal. Naming it (-o
+    // /dev/stdout) is asking for them.
+    if (out == format::glb && !target && o.terminal_out)
+        throw usage_error("glb is binary, and standard output is a terminal: expected -o FILE.glb, a pipe or "
+                          "> FILE (--to gltf writes text; -o /dev/stdout writes glb here all the same)");
 }
 
 resample_options resampling(const options& o) {

@@ -27,8 +27,9 @@ read_options reading(const options& o, const std::string& source);
 /// How rows are written, the Euler sequence of rep::euler being --out-euler's,
 /// else the input's. Throws usage_error for rep::euler without either.
 write_options writing(const options& o, const std::optional<euler_seq>& input_euler);
-/// Throws usage_error for --compact where the output (`out`) is not glTF.
-void check_output_format(const options& o, format out);
+/// Throws usage_error for --compact where the output (`out`) is not glTF,
+/// and for glb bound for standard output (no `target`) that is a terminal.
+void check_output_format(const options& o, format out, const std::optional<std::string>& target);
 resample_options resampling(const options& o);
 /// What reduce's flags make of a track (a glTF sampler's own interpolation aside).
 reduce_options reducing(const options& o);

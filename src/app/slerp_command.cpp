@@ -82,7 +82,7 @@ int run_slerp(const options& o, std::ostream& out, std::ostream& err) {
     // Rows are written as they are made: --steps may ask for millions.
     const std::optional<std::string> target = output_path(o);
     const format to = o.to.value_or(target ? format_of_path(*target).value_or(format::csv) : format::csv);
-    check_output_format(o, to);
+    check_output_format(o, to, target);
     const auto table = open_table(to, target, out, info, writing(o, t.euler), warn0);
     table->begin_track("", channels{}, track_interpolation{});
     const auto row = [&](double h) {

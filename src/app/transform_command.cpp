@@ -282,7 +282,7 @@ transform_plan plan_for(const options& o, const std::string& name, const input_s
     p.out = o.to.value_or(p.in);
     if (o.output_dir) p.target = in_output_dir(*o.output_dir, name, p.out).string();
     else if ((p.target = output_path(o)) && !o.to) p.out = format_of_path(*p.target).value_or(p.in);
-    check_output_format(o, p.out);
+    check_output_format(o, p.out, p.target);
     if (o.cmd == command::resample) {
         if ((o.velocity || o.acceleration) && (p.out == format::bvh || is_gltf(p.out)))
             throw usage_error(fmt::format("--{}: {} has no place for an angular velocity: expected --to csv, json or "

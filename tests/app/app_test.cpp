@@ -88,6 +88,32 @@ TEST_CASE("Euler output needs a sequence; --out-euler defaults to --euler") {
     CHECK(std::fabs(std::stod(j.out.substr(j.out.rfind(',') + 1)) - 30) <= 8e-15);
 }
 
+TEST_CASE("glb is not written to a terminal, and is written to a file or a pipe") {
+    scratch s;
+    for (const char* command : {"resample", "convert", "reduce"}) {
+        CAPTURE(std::string(command));
+        options o = parse({command, "--to", "glb"});
+        o.terminal_out = true;
+        CHECK_THROWS_WITH_AS(run_with(o, two_keys),
+                             "glb is binary, and standard output is a terminal: expected -o FILE.glb, a pipe or > FILE "
+                             "(--to gltf writes text; -o /dev/stdout writes glb here all the same)",
+                             usage_error);
+        o.terminal_out = false;  // a pipe or a file
+        CHECK(run_with(o, two_keys).out.starts_with("glTF"));
+        o = parse({command, "--to", "gltf"});  // text
+        o.terminal_out = true;
+        CHECK(run_with(o, two_keys).out.starts_with("{\"asset\""));
+        const std::string target = (s.dir / (std::string(command) + ".glb")).string();
+        o = parse({command, "-o", target.c_str()});
+        o.terminal_out = true;
+        CHECK(run_with(o, two_keys).status == 0);
+        CHECK(scratch::read(target).starts_with("glTF"));
+    }
+    options slerp = parse({"slerp", "1,0,0,0", "0,0,0,1", "-t", "0.5", "--to", "glb"});
+    slerp.terminal_out = true;
+    CHECK_THROWS_AS(run_with(slerp), usage_error);
+}
+
 TEST_CASE("-o writes the file; an error leaves no file and an existing one untouched") {
     scratch s;
     const std::string good = s.file("good.csv", two_keys);
