@@ -79,12 +79,21 @@ std::string parameter_suggestion(std::vector<std::string_view> unexpected) {
     return did_you_mean(fmt::format("-t {}", fmt::join(unexpected, " ")));
 }
 
+/// Flags that name the same choice in other commands: the format of
+/// compare's report is its --report, that of info's its --to.
+struct same_choice {
+    std::string_view command, typed, own;
+};
+constexpr std::array<same_choice, 2> same_choices{{{"compare", "--to", "--report"}, {"info", "--report", "--to"}}};
+
 /// For an unexpected flag (CLI11's "The following argument was not
 /// expected: --fsp"): " (did you mean '--fps'?)" when likely_meant finds
 /// one of the command's flags. A flag of other commands names them, as
 /// typed or as likely meant: reduce's "--fps" gives " (--fps is a flag of
 /// keyrot resample)", resample's "--tolerance" gives " (did you mean
-/// '--tol' of keyrot compare or reduce?)", not resample's "--to".
+/// '--tol' of keyrot compare or reduce?)", not resample's "--to"; and
+/// compare's "--to" gives " (--to is a flag of keyrot ...; did you mean
+/// '--report'?)", the flag of the same choice.
 std::string flag_suggestion(std::string_view command_name, const std::vector<std::string_view>& unexpected) {
     const auto typed = std::ranges::find_if(unexpected, [](std::string_view w) { return w.starts_with("-"); });
     if (typed == unexpected.end()) return "";
@@ -108,7 +117,12 @@ std::string flag_suggestion(std::string_view command_name, const std::vector<std
     const auto owners = [&](const std::string& flag, std::string_view conjunction) {
         return "keyrot " + spoken_list(others.at(flag), conjunction);
     };
-    if (others.contains(word)) return fmt::format(" ({} is a flag of {})", word, owners(word, "and"));
+    if (others.contains(word)) {
+        const auto same = std::ranges::find_if(
+            same_choices, [&](const same_choice& c) { return c.command == command_name && c.typed == word; });
+        const std::string hint = same == same_choices.end() ? "" : fmt::format("; did you mean '{}'?", same->own);
+        return fmt::format(" ({} is a flag of {}{})", word, owners(word, "and"), hint);
+    }
     std::vector<std::string> names = own;
     for (const auto& entry : others) names.push_back(entry.first);
     const std::size_t letters = word.size() - std::min(word.find_first_not_of('-'), word.size());

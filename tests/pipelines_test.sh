@@ -215,6 +215,11 @@ expect "info names each channel as played" 0 "  interpolation: rotation slerp, t
 expect_error "info --to csv" "keyrot: info: --to: csv not in {json} (see keyrot info --help)" -- "$keyrot" info walk.csv --to csv
 expect_error "compare --rep" "keyrot: compare: The following argument was not expected: --rep (--rep is a flag of keyrot resample, convert, slerp, reduce and plot) (see keyrot compare --help)" -- \
     "$keyrot" compare walk.csv walk.csv --rep quat
+# the same choice, spelled otherwise by another command: compare's report and info's format
+expect_error "compare --to" "keyrot: compare: The following argument was not expected: --to (--to is a flag of keyrot resample, convert, slerp, info and reduce; did you mean '--report'?) (see keyrot compare --help)" -- \
+    "$keyrot" compare walk.csv walk.csv --to json
+expect_error "info --report" "keyrot: info: The following argument was not expected: --report=json (--report is a flag of keyrot compare and reduce; did you mean '--to'?) (see keyrot info --help)" -- \
+    "$keyrot" info walk.csv --report=json
 expect "compare -o" 0 "22 rows compared, 0 failed" -- bash -c "'$keyrot' compare walk10.csv walk10.csv -o summary.txt && cut -d';' -f1 summary.txt"
 
 # ---- messages in the user's words
