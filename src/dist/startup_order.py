@@ -11,9 +11,11 @@ library object's code) holding them are listed in the order the commands
 first reach them, so that code every command runs comes first and a format's
 own code sits together. Valgrind's CPU is not the machine's: the C library's
 string functions are listed in every variant the library has, whichever
-one a CPU picks. Run it again after changes that rename or add functions on
-the everyday path: a name the linker does not find is skipped, so a stale
-list costs start-up time, never correctness.
+one a CPU picks. A function is listed with every clone GCC makes of it
+(name.lto_priv.0, name.isra.0: the suffixes come and go with changes
+elsewhere in the program). Run it again after changes that rename or add
+functions on the everyday path: a name the linker does not find is skipped,
+so a stale list costs start-up time, never correctness.
 """
 import bisect
 import os
@@ -48,6 +50,9 @@ COMMANDS = [
 # vDSO (its clock_gettime) at start, and Valgrind gives the program none.
 VDSO_SETUP = ("dl-object.o", "dl-setup_hash.o", "dl-lookup.o", "dl-misc.o")
 
+# The suffixes of GCC's clones of a function (partitioning, dropped or
+# constant arguments, a split-off part), chained as GCC chains them.
+CLONE_SUFFIX = re.compile(r"(?:\.(?:lto_priv|isra|constprop|part)\.[0-9]+)+$")
 SECTION = re.compile(r"^ (\.text\S*)(?:\s+(0x[0-9a-f]+)\s+(0x[0-9a-f]+)\s+(\S.*))?$")
 PLACED = re.compile(r"^\s+(0x[0-9a-f]+)\s+(0x[0-9a-f]+)\s+(\S.*)$")
 
@@ -101,8 +106,11 @@ def pattern(name, input_file):
     archive = re.match(r"^(.*)\((.*)\)$", input_file)
     if archive:  # a library's member (a C library object's code is all named .text)
         return f"*{os.path.basename(archive.group(1))}:{archive.group(2)}({name})"
-    if ".ltrans" in input_file:  # keyrot's own code, a section a function
-        return None if name == ".text" else f"*({name})"
+    if ".ltrans" in input_file:  # keyrot's own code, a section a function, with its clones
+        if name == ".text":
+            return None
+        function = CLONE_SUFFIX.sub("", name)
+        return f"*({function} {function}.*)"
     return f"*{os.path.basename(input_file)}({name})"  # the C run-time's start files
 
 
