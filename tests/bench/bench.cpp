@@ -15,7 +15,7 @@
 // many numbers printed, with no math, on two threads: with std::to_chars,
 // and with keyrot's number writer), the same job with squad and with matrix
 // output (and the floor of matrix rows), and the scipy script, taking turns,
-// and a summary line of the ratios.
+// and summary lines of the ratios and of the CPU times.
 //
 // Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor|start-up|json]
 #include <fmt/format.h>
@@ -42,7 +42,7 @@ extern char** environ;
 namespace {
 
 struct measurement {
-    double seconds;
+    double seconds, cpu_seconds;  // wall; user and system
     long peak_kb;
     int status;
 };
@@ -59,20 +59,29 @@ measurement run(const std::vector<std::string>& argv) {
     ::sync();  // no earlier run's output still being written back during this one
     const auto start = std::chrono::steady_clock::now();
     pid_t pid;
-    if (posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ) != 0) return {0, 0, -1};
+    if (posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ) != 0) return {0, 0, 0, -1};
     int status = 0;
     rusage usage{};
     wait4(pid, &status, 0, &usage);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     posix_spawn_file_actions_destroy(&actions);
-    return {seconds, usage.ru_maxrss, WIFEXITED(status) ? WEXITSTATUS(status) : -1};
+    const auto in_seconds = [](timeval t) {
+        return static_cast<double>(t.tv_sec) + static_cast<double>(t.tv_usec) / 1e6;
+    };
+    return {seconds, in_seconds(usage.ru_utime) + in_seconds(usage.ru_stime), usage.ru_maxrss,
+            WIFEXITED(status) ? WEXITSTATUS(status) : -1};
 }
 
 struct summary {
-    double median_s;
+    double median_s, median_cpu_s;
     long peak_kb;
     bool ok;
 };
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
 
 /// A command to time, and a file to remove (untimed) before each of its runs.
 struct command {
@@ -83,20 +92,21 @@ struct command {
 /// Runs each command `runs` times, taking turns (a b a b ...) so that a
 /// shared machine's slow moments fall on all of them alike.
 std::vector<summary> repeat(const std::vector<command>& commands, int runs) {
-    std::vector<std::vector<double>> times(commands.size());
-    std::vector<summary> out(commands.size(), summary{0, 0, true});
+    std::vector<std::vector<double>> times(commands.size()), cpu_times(commands.size());
+    std::vector<summary> out(commands.size(), summary{0, 0, 0, true});
     for (int i = 0; i < runs; ++i) {
         for (std::size_t c = 0; c < commands.size(); ++c) {
             if (!commands[c].removed_first.empty()) std::filesystem::remove(commands[c].removed_first);
             const measurement m = run(commands[c].argv);
             times[c].push_back(m.seconds);
+            cpu_times[c].push_back(m.cpu_seconds);
             out[c].peak_kb = std::max(out[c].peak_kb, m.peak_kb);
             out[c].ok = out[c].ok && m.status == 0;
         }
     }
     for (std::size_t c = 0; c < commands.size(); ++c) {
-        std::sort(times[c].begin(), times[c].end());
-        out[c].median_s = times[c][times[c].size() / 2];
+        out[c].median_s = median(times[c]);
+        out[c].median_cpu_s = median(cpu_times[c]);
     }
     return out;
 }
@@ -282,6 +292,13 @@ int main(int argc, char** argv) {
                    python.empty() ? "" : fmt::format(", scipy / keyrot {:.1f}", r[6].median_s / r[0].median_s),
                    r[3].median_s / r[0].median_s, r[4].median_s / r[0].median_s, r[5].median_s / r[2].median_s,
                    r[4].median_s / r[5].median_s);
+        // What the cores allow: no run takes less than its CPU time shared
+        // out over every core.
+        const double cores = std::max(1u, std::thread::hardware_concurrency());
+        fmt::print("floor CPU time (user + system, median): keyrot {:.3f} s, squad {:.3f} s, matrix {:.3f} s; "
+                   "over all {} cores, squad's is {:.2f} of keyrot's time, matrix's {:.2f}\n",
+                   r[0].median_cpu_s, r[3].median_cpu_s, r[4].median_cpu_s, cores,
+                   r[3].median_cpu_s / cores / r[0].median_s, r[4].median_cpu_s / cores / r[0].median_s);
     }
     if (only == "floor") return 0;
     const input inputs[] = {{200000}, {200000, digits::numpy}, {800000}, {1000000, digits::shortest, 25}};
