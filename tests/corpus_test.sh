@@ -318,34 +318,36 @@ for f in threaded.csv threaded_stdout.csv threaded_ndjson.csv; do
     fi
 done
 
-# Squad frames of a track with nothing but rotations are worked out on the
-# formatting threads where the output is the same for q and -q; with
-# --velocity they are worked out as they are made. The rotations must be the
-# same digits either way: two tracks of uneven keys, 33,554 rows (past the
-# first 4,096, formatted before the threads start), every such
+# Slerp and squad frames of a track with nothing but rotations are worked
+# out on the formatting threads where the output is the same for q and -q;
+# with --velocity they are worked out as they are made. The rotations must
+# be the same digits either way: two tracks of uneven keys, 33,554 rows
+# (past the first 4,096, formatted before the threads start), every such
 # representation, CSV and NDJSON (its rates dropped, both sides through jq).
 awk 'BEGIN { print "track,time,qw,qx,qy,qz"
     for (j = 0; j < 2; j++) for (i = 0; i < 700; i++) {
         w = cos(i * 0.7 + j); x = sin(i * 1.3); y = cos(i * 0.4 + 2 * j); z = sin(i * 0.9 + 1); n = sqrt(w * w + x * x + y * y + z * z)
-        printf "j%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", j, i * 0.05 + i % 3 * 0.01, w / n, x / n, y / n, z / n } }' > squad_keys.csv
-for rep in axis-angle:4 rotvec:3 matrix:9 matrix4:16; do
-    columns=$((3 + ${rep#*:}))
-    "$keyrot" resample squad_keys.csv --fps 480 --method squad --rep "${rep%:*}" -o squad_later.csv
-    "$keyrot" resample squad_keys.csv --fps 480 --method squad --rep "${rep%:*}" --velocity -o squad_here.csv
-    if [[ $(wc -l < squad_later.csv) == 33555 ]] && cmp -s squad_later.csv <(cut -d, -f1-$columns squad_here.csv); then
+        printf "j%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", j, i * 0.05 + i % 3 * 0.01, w / n, x / n, y / n, z / n } }' > arc_keys.csv
+for how in slerp squad; do
+    for rep in axis-angle:4 rotvec:3 matrix:9 matrix4:16; do
+        columns=$((3 + ${rep#*:}))
+        "$keyrot" resample arc_keys.csv --fps 480 --method $how --rep "${rep%:*}" -o arc_later.csv
+        "$keyrot" resample arc_keys.csv --fps 480 --method $how --rep "${rep%:*}" --velocity -o arc_here.csv
+        if [[ $(wc -l < arc_later.csv) == 33555 ]] && cmp -s arc_later.csv <(cut -d, -f1-$columns arc_here.csv); then
+            passed=$((passed + 1))
+        else
+            fail "$how, --rep ${rep%:*}: the frames worked out on the formatting threads differ from the ones made in order"
+        fi
+    done
+    "$keyrot" resample arc_keys.csv --fps 480 --method $how --rep matrix --to ndjson | jq -c . > arc_later.ndjson
+    "$keyrot" resample arc_keys.csv --fps 480 --method $how --rep matrix --to ndjson --velocity |
+        jq -c 'del(.angular_velocity)' > arc_here.ndjson
+    if [[ $(wc -l < arc_later.ndjson) == 33554 ]] && cmp -s arc_later.ndjson arc_here.ndjson; then
         passed=$((passed + 1))
     else
-        fail "squad, --rep ${rep%:*}: the frames worked out on the formatting threads differ from the ones made in order"
+        fail "$how, NDJSON: the frames worked out on the formatting threads differ from the ones made in order"
     fi
 done
-"$keyrot" resample squad_keys.csv --fps 480 --method squad --rep matrix --to ndjson | jq -c . > squad_later.ndjson
-"$keyrot" resample squad_keys.csv --fps 480 --method squad --rep matrix --to ndjson --velocity |
-    jq -c 'del(.angular_velocity)' > squad_here.ndjson
-if [[ $(wc -l < squad_later.ndjson) == 33554 ]] && cmp -s squad_later.ndjson squad_here.ndjson; then
-    passed=$((passed + 1))
-else
-    fail "squad, NDJSON: the frames worked out on the formatting threads differ from the ones made in order"
-fi
 
 # A single 100 MB line (generated, not checked in), in CSV and in JSON.
 { printf 'time,qw,qx,qy,qz\n0,'; head -c 100000000 /dev/zero | tr '\0' '1'; printf ',0,0,0\n'; } > long_line.csv

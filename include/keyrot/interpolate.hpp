@@ -73,24 +73,26 @@ class segment_curve;
 /// every channel's value) is evaluated at, wherever that happens.
 inline double segment_fraction(double t0, double t1, double time) noexcept { return (time - t0) / (t1 - t0); }
 
-/// A squad segment's keys (as the path signed them) and control points:
-/// all its curve needs, small enough to hand to another thread with the
-/// segment's frames (track_resampler's squad_frame_sink).
-struct squad_keys {
+/// A slerp or squad segment's keys (as the path signed them) and squad's
+/// control points: all its curve needs, small enough to hand to another
+/// thread with the segment's frames (track_resampler's arc_frame_sink).
+struct arc_keys {
     double t0 = 0, t1 = 0;
-    quat q0, q1, s0, s1;
+    quat q0, q1, s0, s1;  // s0, s1: squad's control points
+    bool squad = false;   // else slerp
 };
 
-/// Squad's curve between two keys, set up once: Shoemake's
-/// slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)).
-class squad_curve {
+/// A slerp or squad segment's curve, its great-circle arcs set up once:
+/// slerp(q0, q1, h), or Shoemake's slerp(slerp(q0, q1, h), slerp(s0, s1, h), 2h(1 - h)).
+class arc_curve {
 public:
-    explicit squad_curve(const squad_keys& k) noexcept : arc_(k.q0, k.q1), control_arc_(k.s0, k.s1) {}
+    explicit arc_curve(const arc_keys& k) noexcept;
     quat at(double h) const noexcept;
 
 private:
     friend class segment_curve;
-    slerp_segment arc_, control_arc_;
+    slerp_segment arc_;
+    std::optional<slerp_segment> control_arc_;  // squad's
 };
 
 /// A cubic track whose spline's equations do not settle (steps near 180
@@ -108,8 +110,8 @@ public:
     /// much as a few frames: make it once, and only for a segment with a
     /// frame inside.
     segment_curve curve() const noexcept;
-    /// squad's keys and control points (for method squad only).
-    squad_keys squad() const noexcept;
+    /// Its keys, and squad's control points (for methods slerp and squad only).
+    arc_keys keys_for_arcs() const noexcept;
 
 private:
     friend class segment_builder;
@@ -144,7 +146,7 @@ private:
     friend class segment;
     explicit segment_curve(const segment& keys) noexcept : keys_(keys) {}
     segment keys_;
-    std::variant<std::monostate, slerp_segment, squad_curve> set_up_;  // slerp's arc; squad's curve
+    std::optional<arc_curve> arcs_;  // slerp's and squad's
 };
 
 /// Turns a track's keys, as they arrive, into segments: the sign of each key

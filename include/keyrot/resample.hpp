@@ -36,21 +36,21 @@ struct resample_options {
 /// Where frames go as they are made.
 using frame_sink = std::function<void(const sample&)>;
 
-/// Where squad frames may go before their rotations are worked out: a
-/// consumer that works them out itself, later and on other threads (a
-/// squad frame costs three slerps, more than the frame's trip there). It
+/// Where slerp and squad frames may go before their rotations are worked
+/// out: a consumer that works them out itself, later and on other threads
+/// (the thread that makes the frames is the one the others wait for). It
 /// takes a segment's keys, then each of that segment's frames: its rotation
-/// is squad_curve(keys).at(segment_fraction(t0, t1, time)), the bits resample
+/// is arc_curve(keys).at(segment_fraction(t0, t1, time)), the bits resample
 /// would give. Such frames skip the sign chain (each frame's quaternion
 /// nearest the one before), which needs every rotation in order: only a
 /// consumer whose output is the same for q and -q may take them.
-class squad_frame_sink {
+class arc_frame_sink {
 public:
-    virtual void keys(const squad_keys& k) = 0;
+    virtual void keys(const arc_keys& k) = 0;
     virtual void frame(double frame, double time) = 0;
 
 protected:
-    ~squad_frame_sink() = default;
+    ~arc_frame_sink() = default;
 };
 
 /// The first and last frame of the grid for keys from `first` to `last`
@@ -115,16 +115,16 @@ extern template class value_channel<morph_weights>;
 /// next translation, scale and weights key) are known. Frame k has time k / fps,
 /// computed afresh, never accumulated. At a key time the rotation is that
 /// key's; quaternion signs are continuous from frame to frame, starting
-/// from the first key's sign (not where frames go to a squad_frame_sink,
+/// from the first key's sign (not where frames go to an arc_frame_sink,
 /// whose consumer has no use for signs). The caller checks the range with
 /// check_frame_range.
 class track_resampler {
 public:
-    /// `carried`: the channels some key of the track carries. `squad_frames`:
-    /// where a squad track's frames that carry nothing but a rotation go
-    /// instead of `emit` (none: every frame through `emit`).
+    /// `carried`: the channels some key of the track carries. `arc_frames`:
+    /// where a slerp or squad track's frames inside a segment that carry
+    /// nothing but a rotation go instead of `emit` (none: every frame through `emit`).
     track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, channels carried,
-                    frame_sink emit, squad_frame_sink* squad_frames = nullptr);
+                    frame_sink emit, arc_frame_sink* arc_frames = nullptr);
     /// Precondition: times strictly increasing (check_next).
     void add(const key& k);
     /// After the last key: the remaining frames.
@@ -143,7 +143,7 @@ private:
     resample_options opts_;
     segment_builder builder_;
     frame_sink emit_;
-    squad_frame_sink* squad_frames_;
+    arc_frame_sink* arc_frames_;
     bool vectors_;  // a translation, scale or weights channel: frames wait in pending_
     bool started_ = false;
     double next_frame_ = 0;

@@ -114,7 +114,7 @@ public:
     void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
                      const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
         row_.emplace(row);
-        resampler_.emplace(of(own), euler, carried, [this](const sample& s) { row_->frame(s); }, row_->squad_frames());
+        resampler_.emplace(of(own), euler, carried, [this](const sample& s) { row_->frame(s); }, row_->arc_frames());
         track_ = name;
         first_.reset();
     }

@@ -64,22 +64,22 @@ document_facts facts_of(const document& doc);
 
 /// Where a row source puts a track's rows: into a table, counted (how many
 /// rows the keys have made so far says whether parsing ahead pays).
-class row_sink final : public squad_frame_sink {
+class row_sink final : public arc_frame_sink {
 public:
-    row_sink(table_output& out, std::size_t& count) : out_(&out), count_(&count), squad_frames_(out.squad_frames()) {}
+    row_sink(table_output& out, std::size_t& count) : out_(&out), count_(&count), arc_frames_(out.arc_frames()) {}
     void row(const table_row& r) const { ++*count_, out_->row(r); }
     /// A row that is a sample as it is (resample's frames).
     void frame(const sample& s) const { ++*count_, out_->frame(s); }
-    /// Itself where the output takes squad frames whose rotations it works
-    /// out (counting them as rows), else none.
-    squad_frame_sink* squad_frames() { return squad_frames_ ? this : nullptr; }
-    void keys(const squad_keys& k) override { squad_frames_->keys(k); }
-    void frame(double frame, double time) override { ++*count_, squad_frames_->frame(frame, time); }
+    /// Itself where the output takes slerp and squad frames whose rotations
+    /// it works out (counting them as rows), else none.
+    arc_frame_sink* arc_frames() { return arc_frames_ ? this : nullptr; }
+    void keys(const arc_keys& k) override { arc_frames_->keys(k); }
+    void frame(double frame, double time) override { ++*count_, arc_frames_->frame(frame, time); }
 
 private:
     table_output* out_;
     std::size_t* count_;
-    squad_frame_sink* squad_frames_;
+    arc_frame_sink* arc_frames_;
 };
 
 /// What makes a track's rows from its keys, chosen once per input:

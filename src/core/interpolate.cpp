@@ -71,25 +71,32 @@ quat squad_control(quat prev, quat cur, quat next) noexcept {
     return cur * exp(-0.25 * sum);
 }
 
-quat squad_curve::at(double h) const noexcept { return slerp(arc_.at(h), control_arc_.at(h), 2 * h * (1 - h)); }
+arc_curve::arc_curve(const arc_keys& k) noexcept : arc_(k.q0, k.q1) {
+    if (k.squad) control_arc_.emplace(k.s0, k.s1);
+}
 
-squad_keys segment::squad() const noexcept {
+quat arc_curve::at(double h) const noexcept {
+    if (!control_arc_) return arc_.at(h);
+    return slerp(arc_.at(h), control_arc_->at(h), 2 * h * (1 - h));
+}
+
+arc_keys segment::keys_for_arcs() const noexcept {
+    if (how_ != method::squad) return {t0, t1, q0, q1, {}, {}, false};
     const auto& p = std::get<squad_points>(more_);
-    return {t0, t1, q0, q1, p.s0, p.s1};
+    return {t0, t1, q0, q1, p.s0, p.s1, true};
 }
 
 segment_curve segment::curve() const noexcept {
     segment_curve c(*this);
-    if (how_ == method::slerp) c.set_up_.emplace<slerp_segment>(q0, q1);
-    if (how_ == method::squad) c.set_up_.emplace<squad_curve>(squad());
+    if (how_ == method::slerp || how_ == method::squad) c.arcs_.emplace(keys_for_arcs());
     return c;
 }
 
 quat segment_curve::at(double h) const noexcept {
     switch (keys_.how_) {
-        case method::slerp: return std::get<slerp_segment>(set_up_).at(h);
+        case method::slerp:
+        case method::squad: return arcs_->at(h);
         case method::nlerp: return nlerp(keys_.q0, keys_.q1, h);
-        case method::squad: return std::get<squad_curve>(set_up_).at(h);
         case method::step: return keys_.q0;
         case method::cubic: return std::get<spline_segment>(keys_.more_).at(h);
         case method::cubicspline: {
@@ -116,7 +123,7 @@ motion segment_curve::rates(double h) const noexcept {
     const auto c = [](quat q) { return std::array<double, 4>{q.w, q.x, q.y, q.z}; };
     const auto q = [](const std::array<double, 4>& v) { return quat{v[0], v[1], v[2], v[3]}; };
     switch (k.how_) {
-        case method::slerp: return {(1 / dt) * std::get<slerp_segment>(set_up_).rotation_vector(), {}};
+        case method::slerp: return {(1 / dt) * arcs_->arc_.rotation_vector(), {}};
         case method::step: return {};
         case method::nlerp: {
             // the lerp l and its derivative (q1 - q0) / dt, then normalised
@@ -159,8 +166,7 @@ motion segment_curve::rates(double h) const noexcept {
             // q = P exp(g phi_C / 2): P and S the inner slerps (constant body
             // rates wp, ws), C = P* S, g = 2h(1 - h). phi_C's derivatives from
             // C's motion, then the product's.
-            const squad_curve& squad = std::get<squad_curve>(set_up_);
-            const slerp_segment &arc = squad.arc_, &control_arc = squad.control_arc_;
+            const slerp_segment &arc = arcs_->arc_, &control_arc = *arcs_->control_arc_;
             const vec3 wp = (1 / dt) * arc.rotation_vector(), ws = (1 / dt) * control_arc.rotation_vector();
             const quat C = conjugate(arc.at(h)) * control_arc.at(h);
             const vec3 phi = 2.0 * log(C), wp_in_c = rotate(conjugate(C), wp);

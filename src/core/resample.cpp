@@ -112,7 +112,7 @@ template class value_channel<vec3>;
 template class value_channel<morph_weights>;
 
 track_resampler::track_resampler(const resample_options& opts, const std::optional<euler_seq>& seq, channels carried,
-                                 frame_sink emit, squad_frame_sink* squad_frames)
+                                 frame_sink emit, arc_frame_sink* arc_frames)
     : opts_(opts),
       builder_(opts.how, opts.way, seq),
       emit_(std::move(emit)),
@@ -123,7 +123,8 @@ track_resampler::track_resampler(const resample_options& opts, const std::option
       rates_(opts.velocity || opts.acceleration) {
     // Only frames of a rotation alone go there: rates, translations, scales
     // and weights are worked out here, frame by frame.
-    squad_frames_ = opts.how == method::squad && !vectors_ && !rates_ ? squad_frames : nullptr;
+    const bool arcs = opts.how == method::slerp || opts.how == method::squad;
+    arc_frames_ = arcs && !vectors_ && !rates_ ? arc_frames : nullptr;
 }
 
 void track_resampler::add(const key& k) {
@@ -172,9 +173,9 @@ void track_resampler::frames_of(const segment& s) {
     // Dense keys (motion capture at 120 Hz, say) leave most segments without
     // a frame inside: they never set up a curve.
     if (!in_segment()) return;
-    if (squad_frames_) {
-        squad_frames_->keys(s.squad());
-        for (; in_segment(); ++next_frame_) squad_frames_->frame(next_frame_, time());
+    if (arc_frames_) {
+        arc_frames_->keys(s.keys_for_arcs());
+        for (; in_segment(); ++next_frame_) arc_frames_->frame(next_frame_, time());
         return;
     }
     const segment_curve curve = s.curve();

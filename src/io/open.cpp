@@ -45,8 +45,8 @@ public:
     }
     void row(const table_row& s) override { rows_.row(s); }
     void frame(const sample& s) override { rows_.frame(s); }
-    /// Squad frames skip the sign chain: only where the sign changes nothing written.
-    squad_frame_sink* squad_frames() override { return sign_free_ ? &rows_ : nullptr; }
+    /// Such frames skip the sign chain: only where the sign changes nothing written.
+    arc_frame_sink* arc_frames() override { return sign_free_ ? &rows_ : nullptr; }
     void finish() override {
         rows_.finish();
         writer_->finish();

@@ -20,7 +20,7 @@
 
 namespace keyrot {
 
-class squad_frame_sink;
+class arc_frame_sink;
 
 /// Everything a reader needs besides the text.
 struct read_options {
@@ -136,9 +136,9 @@ public:
     virtual void row(const table_row& s) = 0;
     /// A row that is a sample as it is (resample's frames: the everyday row).
     virtual void frame(const sample& s) { row(table_row{s}); }
-    /// Where resample's squad frames may go before their rotations are
-    /// worked out (keyrot/resample.hpp), or none: through frame().
-    virtual squad_frame_sink* squad_frames() { return nullptr; }
+    /// Where resample's slerp and squad frames may go before their
+    /// rotations are worked out (keyrot/resample.hpp), or none: through frame().
+    virtual arc_frame_sink* arc_frames() { return nullptr; }
     /// Closes the document and puts out what is left (then commits the file).
     virtual void finish() = 0;
 };

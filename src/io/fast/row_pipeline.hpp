@@ -31,10 +31,10 @@ namespace keyrot::detail {
 /// whole batches with its own row_writer and the texts are put out in batch
 /// order; JSON rows go through the one writer, on one thread. Errors of the
 /// formatting threads come back from the next call, or from finish().
-/// Squad frames come as their segment's keys and their times: the
-/// formatting threads work out their rotations, which would leave the
-/// reading thread with three slerps a frame.
-class row_pipeline final : public squad_frame_sink {
+/// Slerp and squad frames may come as their segment's keys and their
+/// times: the formatting threads then work out their rotations, which
+/// would keep the reading thread, the one they wait for, busier.
+class row_pipeline final : public arc_frame_sink {
 public:
     row_pipeline(table_writer& writer, chunked_output& out, unsigned threads)
         : writer_(writer), out_(out), threads_(threads) {}
@@ -60,23 +60,23 @@ public:
         if (alone(s)) return pack(s, true);
         add_full(table_row{s});
     }
-    void keys(const squad_keys& k) override {
-        squad_ = k;
-        squad_index_ = packed_row::none;
+    void keys(const arc_keys& k) override {
+        arc_ = k;
+        arc_index_ = packed_row::none;
         inline_curve_.reset();
     }
     void frame(double frame, double time) override {
         if (workers_.empty()) {
-            if (!inline_curve_) inline_curve_.emplace(squad_);
+            if (!inline_curve_) inline_curve_.emplace(arc_);
             sample s;
-            s.time = time, s.frame = frame, s.rotation = inline_curve_->at(segment_fraction(squad_.t0, squad_.t1, time));
+            s.time = time, s.frame = frame, s.rotation = inline_curve_->at(segment_fraction(arc_.t0, arc_.t1, time));
             return inline_row(table_row{s});
         }
-        if (squad_index_ == packed_row::none) {  // the keys' first frame in this batch
-            squad_index_ = static_cast<std::uint32_t>(batch_.squads.size());
-            batch_.squads.push_back(squad_);
+        if (arc_index_ == packed_row::none) {  // the keys' first frame in this batch
+            arc_index_ = static_cast<std::uint32_t>(batch_.arcs.size());
+            batch_.arcs.push_back(arc_);
         }
-        batch_.rows.push_back({time, frame, {}, packed_row::squad | squad_index_, true, true});
+        batch_.rows.push_back({time, frame, {}, packed_row::arc | arc_index_, true, true});
         if (batch_.rows.size() == batch_rows) hand_over();
     }
     void finish() {
@@ -97,11 +97,11 @@ private:
     };
     /// A row as it waits in a batch: its rotation, time and frame, or where it is in full.
     struct packed_row {
-        static constexpr std::uint32_t none = UINT32_MAX, squad = 1u << 31;
+        static constexpr std::uint32_t none = UINT32_MAX, arc = 1u << 31;
         double time, frame;
         quat rotation;
-        // none; its index in batch::full (fewer than batch_rows); or a squad
-        // frame, its rotation to be worked out: squad | its keys' index in batch::squads
+        // none; its index in batch::full (fewer than batch_rows); or a slerp
+        // or squad frame, its rotation to be worked out: arc | its keys' index in batch::arcs
         std::uint32_t full;
         bool has_frame, has_time;
 
@@ -120,12 +120,12 @@ private:
         std::vector<double> weights;  // their morph weights, one after another
         std::vector<frame_rates> rates;  // their angular velocities and accelerations, likewise
         std::vector<track_begin> begins;
-        std::vector<squad_keys> squads;  // the squad frames' segments
+        std::vector<arc_keys> arcs;  // the slerp and squad frames' segments
 
         /// Empty, its memory kept: already mapped, unlike a new vector's.
         void clear() {
             resumed.reset();
-            rows.clear(), full.clear(), weights.clear(), rates.clear(), begins.clear(), squads.clear();
+            rows.clear(), full.clear(), weights.clear(), rates.clear(), begins.clear(), arcs.clear();
         }
     };
     struct parked_text {
@@ -202,7 +202,7 @@ private:
         }
         work_.notify_one();
         batch_.number = ++batches_;
-        squad_index_ = packed_row::none;
+        arc_index_ = packed_row::none;
         if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
     }
     void stop() {
@@ -289,7 +289,7 @@ private:
         if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->carried);
         std::size_t next_begin = 0, weights = 0, rates = 0;
         const bool weighted = !b.weights.empty() || !b.rates.empty();
-        std::optional<squad_curve> curve;  // of b.squads[curve_of]
+        std::optional<arc_curve> curve;  // of b.arcs[curve_of]
         std::uint32_t curve_of = packed_row::none;
         for (std::size_t i = 0; i <= b.rows.size(); ++i) {
             for (; next_begin < b.begins.size() && b.begins[next_begin].before_row == i; ++next_begin)
@@ -298,11 +298,11 @@ private:
             const packed_row& p = b.rows[i];
             if (p.full == packed_row::none) {
                 writer.row(p.unpacked());
-            } else if (p.full & packed_row::squad) {
-                const std::uint32_t keys = p.full & ~packed_row::squad;
-                if (keys != curve_of) curve.emplace(b.squads[keys]), curve_of = keys;
+            } else if (p.full & packed_row::arc) {
+                const std::uint32_t keys = p.full & ~packed_row::arc;
+                if (keys != curve_of) curve.emplace(b.arcs[keys]), curve_of = keys;
                 table_row r = p.unpacked();
-                r.rotation = curve->at(segment_fraction(b.squads[keys].t0, b.squads[keys].t1, p.time));
+                r.rotation = curve->at(segment_fraction(b.arcs[keys].t0, b.arcs[keys].t1, p.time));
                 writer.row(r);
             } else if (!weighted || (b.full[p.full].weights.empty() && !b.full[p.full].rates)) {
                 writer.row(b.full[p.full]);
@@ -323,9 +323,9 @@ private:
     std::size_t inline_rows_ = 0;
     batch batch_;
     std::optional<track_begin> current_;
-    squad_keys squad_;                            // the squad frames' segment
-    std::uint32_t squad_index_ = packed_row::none;  // its index in batch_.squads, once there
-    std::optional<squad_curve> inline_curve_;     // its curve, for frames formatted here
+    arc_keys arc_;                                // the slerp or squad frames' segment
+    std::uint32_t arc_index_ = packed_row::none;  // its index in batch_.arcs, once there
+    std::optional<arc_curve> inline_curve_;       // its curve, for frames formatted here
     std::size_t batches_ = 0, written_ = 0;
     std::deque<batch> queue_;
     std::optional<parked_text> parked_;  // formatted before its turn
