@@ -93,6 +93,12 @@ for args in "info walk.csv" "slerp 1,0,0,0 0,0,0,1 --steps 4" "compare walk1.csv
     expect_error "$args, standard output closed" "keyrot: cannot write to standard output: it is closed" -- \
         bash -c "'$keyrot' $args >&-"
 done
+# 100,001 rows: past the first few thousand, they are formatted and written on other threads
+printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n100,0,0,0,1\n' > long.csv
+for rep in axis-angle quat; do
+    expect_error "$rep rows from other threads > /dev/full" "keyrot: cannot write to standard output: No space left on device" -- \
+        bash -c "'$keyrot' resample long.csv --fps 1000 --rep $rep > /dev/full"
+done
 expect "standard output closed, -o FILE" 0 "$(cat walk1.csv)" -- bash -c "'$keyrot' resample walk.csv --fps 1 -o closed_out.csv >&- && cat closed_out.csv"
 # a warning with standard error closed goes nowhere, not into the spooled input
 printf 'time,qw,qx,qy,qz\n0,2,0,0,0\n1,2,0,0,0\n' > norm.csv
@@ -103,6 +109,9 @@ if [[ $(id -u) == 0 ]] && mkdir small && mount -t tmpfs -o size=8k tmpfs small 2
     expect_error "-o into a full filesystem" "keyrot: cannot write 'small/table.csv': No space left on device" -- \
         bash -c "rm -f small/table.csv; '$keyrot' slerp 1,0,0,0 0,0,0,1 --steps 400 -o small/table.csv"
     expect "nothing left in it" 0 "" -- ls -A small
+    expect_error "-o into a full filesystem, rows from other threads" "keyrot: cannot write 'small/long.csv': No space left on device" -- \
+        "$keyrot" resample long.csv --fps 1000 --rep axis-angle -o small/long.csv
+    expect "nothing left in it either" 0 "" -- ls -A small
     umount small
 else
     echo "skipped: a full filesystem needs root and a tmpfs"

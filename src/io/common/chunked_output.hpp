@@ -1,6 +1,7 @@
 #pragma once
 // Where a table's text goes: a file or a stream, a chunk at a time, each
-// chunk written by a second thread while the next one fills.
+// chunk written by a second thread while the next one fills, or batches
+// formatted on other threads, written by them.
 #include <condition_variable>
 #include <exception>
 #include <mutex>
@@ -16,10 +17,11 @@
 namespace keyrot::detail {
 
 /// Where output text goes: -o FILE (a temporary file renamed on success) or
-/// a stream, in chunks of about a megabyte or in the batches formatting
-/// threads put out. Each is written by a second thread, started with the
-/// first chunk and kept to the end, while the next one fills (by the
-/// caller, where the system refuses that thread).
+/// a stream, in chunks of about a megabyte, each written by a second thread,
+/// started with the first chunk and kept to the end, while the next one
+/// fills (by the caller, where the system refuses that thread); or in the
+/// batches formatting threads put out, each written by the thread that
+/// formatted it.
 class chunked_output {
 public:
     chunked_output(const std::optional<std::string>& path, std::ostream& out, commit_mode commit) : out_(out) {
@@ -37,30 +39,22 @@ public:
         writer_.join();  // after a write under way (an error elsewhere): it ends before the file goes
     }
     std::string& text() noexcept { return text_; }
-    /// Room for `bytes` in the buffer put() gives in exchange for the first
-    /// text it takes (the texts put out then go round, never shrinking).
-    void reserve_exchange(std::size_t bytes) { spare_.reserve(bytes); }
+    /// Hands text() to the writing thread once it holds a chunk.
     void maybe_flush() {
-        if (text_.size() >= chunk) put(text_);
+        if (text_.size() >= chunk) put();
     }
-    /// Puts out `text` after text(), which it leaves empty, and gives it an
-    /// empty buffer in exchange: a batch formatted elsewhere is not copied.
+    /// Writes text(), then `text`, on this thread, and empties both (their
+    /// memory kept): for batches formatted on several threads already, for
+    /// which a writing thread would be one more thread to share the cores.
     /// One caller at a time.
-    void put(std::string& text) {
+    void write_here(std::string& text) {
         wait();
-        if (&text != &text_ && !text_.empty()) {
+        if (!text_.empty()) {
             write(text_);
             text_.clear();
         }
-        std::swap(text, spare_);
+        write(text);
         text.clear();
-        if (!writer_.joinable() && (unthreaded_ || !try_start_thread(writer_, [this] { write_spares(); }))) {
-            unthreaded_ = true;  // no writing thread to be had: each text is written here
-            return write(spare_);
-        }
-        const std::lock_guard lock(mutex_);
-        spare_full_ = true;
-        changed_.notify_all();
     }
     void finish() {
         wait();
@@ -70,6 +64,19 @@ public:
 
 private:
     static constexpr std::size_t chunk = std::size_t{1} << 20;
+    /// Hands text() to the writing thread, leaving it empty.
+    void put() {
+        wait();
+        std::swap(text_, spare_);
+        text_.clear();
+        if (!writer_.joinable() && (unthreaded_ || !try_start_thread(writer_, [this] { write_spares(); }))) {
+            unthreaded_ = true;  // no writing thread to be had: each text is written here
+            return write(spare_);
+        }
+        const std::lock_guard lock(mutex_);
+        spare_full_ = true;
+        changed_.notify_all();
+    }
     /// Until the writing thread is done with spare_; rethrows its error.
     void wait() {
         std::unique_lock lock(mutex_);

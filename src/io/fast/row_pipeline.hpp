@@ -28,9 +28,11 @@ namespace keyrot::detail {
 /// ones starting threads costs more than it saves): the caller, reading and
 /// resampling, hands over batches of rows in order; a bounded queue keeps
 /// memory constant. Where rows stand alone (CSV, NDJSON) each thread formats
-/// whole batches with its own row_writer and the texts are put out in batch
-/// order; JSON rows go through the one writer, on one thread. Errors of the
-/// formatting threads come back from the next call, or from finish().
+/// whole batches with its own row_writer and writes their texts out itself,
+/// in batch order (a writing thread besides would be one more thread to
+/// share the cores); JSON rows go through the one writer, on one thread.
+/// Errors of the formatting threads come back from the next call, or from
+/// finish().
 /// Slerp and squad frames may come as their segment's keys and their
 /// times: the formatting threads then work out their rotations, which
 /// would keep the reading thread, the one they wait for, busier.
@@ -171,14 +173,14 @@ private:
         }
         batch_.rows.reserve(batch_rows);
         if (current_) batch_.resumed = track_begin{0, current_->name, current_->carried};
-        // The texts the batches are formatted into go round between the
-        // threads: each made large enough for a batch once (as large as the
-        // rows formatted here so far, and a quarter more for longer numbers
-        // later), not grown in steps, each a copy into pages never touched.
+        // The texts the batches are formatted into (each thread's, and the
+        // spare ones parking goes round with) are made large enough for a
+        // batch once (as large as the rows formatted here so far, and a
+        // quarter more for longer numbers later), not grown in steps, each
+        // a copy into pages never touched.
         if (!workers.empty() && workers.front()->own) {
             text_room_ = out_.text().size() * batch_rows / inline_limit * 5 / 4;
             for (auto& w : workers) w->text.reserve(text_room_);
-            out_.reserve_exchange(text_room_);
         }
         workers_.reserve(workers.size());
         for (auto& w : workers) {
@@ -242,14 +244,14 @@ private:
         turn_.wait(lock, [&] { return written_ == number || failure_; });
         if (failure_) return false;
         lock.unlock();
-        out_.put(text);  // this batch's turn: no other thread writes now
+        out_.write_here(text);  // this batch's turn: no other thread writes now
         lock.lock();
         // (while one is put out, the next may be parked: the loop)
         for (++written_; parked_ && parked_->number == written_; ++written_) {
             std::string parked = std::move(parked_->text);
             parked_.reset();
             lock.unlock();
-            out_.put(parked);  // (which leaves it an empty buffer)
+            out_.write_here(parked);  // (which leaves it an empty buffer)
             lock.lock();
             spare_texts_.push_back(std::move(parked));
         }
