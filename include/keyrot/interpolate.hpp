@@ -166,6 +166,13 @@ public:
     /// Adds the next key (times strictly increasing); returns its rotation
     /// with the sign the path gave it.
     quat add(const key& k);
+    /// The sign add() gives rotation q coming after a key whose rotation
+    /// (with its sign) is `prev`, without adding it: for every method but
+    /// cubic, which always turns the short way.
+    quat signed_after(quat prev, quat q) const noexcept {
+        const bool flips = way_ == path::shortest && how_ != method::cubicspline;
+        return flips && dot(prev, q) < 0 ? -q : q;
+    }
     /// The next segment whose keys (and look-ahead) have arrived; with
     /// `end` (no more keys) also the last one. False when there is none.
     /// Throws spline_error for a cubic track whose spline does not converge.

@@ -96,6 +96,7 @@ private:
     std::string source_;
     std::function<void(const key&)> keep_;
     mutable segment_builder builder_;  // between()'s, kept for its memory
+    double sin_half_tol_;              // what the probes' screens of the tolerance share
     std::vector<key> keys_;            // from the last kept key (squad: the whole track)
     std::size_t good_ = 0;             // the farthest key known to be reachable from keys_[0]
     reach good_reach_;                 // what reaching it found

@@ -44,7 +44,8 @@ double weights_distance(const morph_weights& a, const morph_weights& b, double h
 
 track_reducer::track_reducer(const reduce_options& opts, const std::optional<euler_seq>& seq, std::string source,
                              std::function<void(const key&)> keep)
-    : opts_(opts), seq_(seq), source_(std::move(source)), keep_(std::move(keep)), builder_(opts.how, opts.way, seq) {
+    : opts_(opts), seq_(seq), source_(std::move(source)), keep_(std::move(keep)), builder_(opts.how, opts.way, seq),
+      sin_half_tol_(arc_screen::sin_half(opts.tol_deg)) {
     check_method(opts.how, seq);
     if (opts.how == method::cubicspline)
         throw option_error(option::method, "reduce plays keys as slerp, nlerp, squad, step or euler, not cubicspline "
@@ -112,13 +113,12 @@ track_reducer::reach track_reducer::reaches(std::size_t to) const {
     const key& b = keys_[to];
     if (!played_between(a, b, 0, to)) return {};
     // The keys with the signs the path gives them, without a segment (it is made only if a key needs it).
-    builder_.clear();
-    const quat qa = builder_.add(a), qb = builder_.add(b);
-    const arc_screen screen(qa, qb, opts_.tol_deg);
+    const quat qa = a.rotation, qb = builder_.signed_after(qa, b.rotation);
+    arc_screen screen(qa, qb, sin_half_tol_);
     if (!screen.usable()) return exactly();
     std::optional<segment_curve> curve;  // set up for the first key the screen leaves unsure
     bool screened = false;                               // a key the screen found within
-    double sin_off = 0, exact_deg = 0, translation = 0;  // the largest
+    double sin_off_sq = 0, exact_deg = 0, translation = 0;  // the largest
     for (std::size_t i = 1; i < to; ++i) {
         const key& k = keys_[i];
         if (channels_of(k) != channels_of(a)) return {};
@@ -126,7 +126,7 @@ track_reducer::reach track_reducer::reaches(std::size_t to) const {
         const arc_screen::finding f = screen.at(h, k.rotation);
         switch (f.v) {
             case arc_screen::verdict::beyond: return {};
-            case arc_screen::verdict::within: screened = true, sin_off = std::max(sin_off, f.sin_off); break;
+            case arc_screen::verdict::within: screened = true, sin_off_sq = std::max(sin_off_sq, f.sin_off_sq); break;
             case arc_screen::verdict::unsure: {
                 if (!curve) curve = segment_between(0, to).curve();
                 const double deg = rotation_error(curve->at(h), k);
@@ -139,7 +139,7 @@ track_reducer::reach track_reducer::reaches(std::size_t to) const {
         translation = std::max(translation, moved);
     }
     if (!screened) return {true, exact_deg, true, translation};
-    return {true, std::max(screen.most_deg(sin_off), exact_deg), false, translation};
+    return {true, std::max(screen.most_deg(sin_off_sq), exact_deg), false, translation};
 }
 
 track_reducer::errors track_reducer::kept_errors(const reach& r) const {
