@@ -160,12 +160,13 @@ def check_csv(work, data):
     for method in ("slerp", "nlerp", "step", "squad"):
         for tol, tol_t in ((0.01, 0.001), (0.5, 0.01), (0.0, 0.0)):
             out = os.path.join(work, f"reduced_{method}_{tol}.csv")
-            status, _, err = run(["reduce", path, "--method", method, "--tol", str(tol), "--tol-translation",
-                                  str(tol_t), "-o", out])
+            status, text, err = run(["reduce", path, "--method", method, "--tol", str(tol), "--tol-translation",
+                                     str(tol_t), "-o", out, "--report", "json"])
             label = f"reduce --method {method} --tol {tol}"
             if status != 0:
                 fail(f"{label}: status {status}, {err.strip()}")
                 continue
+            reported = {t["track"]: t for t in json.loads(text)["tracks"]}
             reduced = read_csv(open(out).read())
             problems = []
             counts = []
@@ -193,6 +194,11 @@ def check_csv(work, data):
                 # 1e-9 deg: scipy's slerp and keyrot's round differently.
                 if worst > tol + 1e-9 or worst_t > tol_t + 1e-12:
                     problems.append(f"{name}: replayed {worst:.3g} deg, {worst_t:.3g} away (scipy)")
+                # The largest errors reported are the replay's.
+                said = reported[name]
+                if abs(said["largest_error"] - worst) > 1e-9 or abs(said["largest_translation_error"] - worst_t) > 1e-12:
+                    problems.append(f"{name}: reported {said['largest_error']:.12g} deg, "
+                                    f"{said['largest_translation_error']:.3g} away; replayed {worst:.12g}, {worst_t:.3g}")
             # The same guarantee through keyrot itself: the kept keys resampled at the keys' rate
             # (but the constant track's one key, which resample gives one frame).
             moving = {name: track for name, track in data.items() if name != "constant"}

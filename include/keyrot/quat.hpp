@@ -84,6 +84,14 @@ vec3 log(quat q) noexcept;
 /// Rotation angle in [0, pi] of the rotation taking a to b (sign-invariant:
 /// a and -a give the same answer). geodesic_angle(q, q) = 0.
 double geodesic_angle(quat a, quat b) noexcept;
+/// geodesic_angle in two steps, for a caller that can do without the
+/// angle of most pairs: the sine and cosine of half of it, to one scale
+/// (the vector part's norm and |w| of conjugate(a) * b), then the angle.
+struct half_angle {
+    double sin, cos;
+};
+half_angle geodesic_half_angle(quat a, quat b) noexcept;
+double geodesic_angle(half_angle h) noexcept;
 
 /// Rotate v by the unit quaternion q (v' = R v).
 vec3 rotate(quat q, vec3 v) noexcept;

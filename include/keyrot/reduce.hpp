@@ -59,9 +59,11 @@ private:
     };
     /// The errors at keys `from` + 1 .. `to` - 1 of keys_ played from the
     /// kept keys `from` and `to` (squad: with `before` and `after` too); up
-    /// to the first key out of tolerance, or with `whole` all of them.
+    /// to the first key out of tolerance, or with `whole` all of them. A
+    /// rotation error plainly below `floor` degrees (and the tolerance)
+    /// counts as 0: deg is the largest only where that is more than floor.
     errors between(std::size_t from, std::size_t to, std::optional<std::size_t> before = std::nullopt,
-                   std::optional<std::size_t> after = std::nullopt, bool whole = false) const;
+                   std::optional<std::size_t> after = std::nullopt, bool whole = false, double floor = 0) const;
     /// What a stretch tried was found to hold: whether every key is within
     /// tolerance (between(0, to).ok), the largest rotation error (or, where
     /// deg_exact is false, a bound at least as large) and the largest

@@ -104,15 +104,19 @@ vec3 log(quat q) noexcept {
     return (half / sin_half) * v;
 }
 
-double geodesic_angle(quat a, quat b) noexcept {
+half_angle geodesic_half_angle(quat a, quat b) noexcept {
     // conj(a) * b is within about 2^-106 of exact, but for b = a not always
     // exactly (1, 0, 0, 0): a rotation compared with itself (a file with a
     // copy of itself) must differ by 0, not 1e-30 degrees.
     const auto same = [](quat p, quat q) { return p.w == q.w && p.x == q.x && p.y == q.y && p.z == q.z; };
-    if (same(a, b) || same(a, -b)) return 0;
+    if (same(a, b) || same(a, -b)) return {0, 1};
     const quat r = conjugate(a) * b;
-    return 2 * std::atan2(norm(vector_part(r)), std::fabs(r.w));
+    return {norm(vector_part(r)), std::fabs(r.w)};
 }
+
+double geodesic_angle(half_angle h) noexcept { return 2 * std::atan2(h.sin, h.cos); }
+
+double geodesic_angle(quat a, quat b) noexcept { return geodesic_angle(geodesic_half_angle(a, b)); }
 
 vec3 rotate(quat q, vec3 v) noexcept {
     return vector_part(q * quat{0, v.x, v.y, v.z} * conjugate(q));

@@ -19,9 +19,13 @@ bool played_between(const key& a, const key& b, std::size_t from, std::size_t to
     return channels_of(a) == channels_of(b) || to == from + 1;
 }
 
-/// How far, in degrees, key k's rotation is from q.
-double rotation_error(quat q, const key& k) {
-    return from_radians(geodesic_angle(q, k.rotation), angle_unit::degrees);
+/// How far, in degrees, key k's rotation is from q; or 0 where that is
+/// plainly less than `floor` degrees (no atan2 then).
+double rotation_error(quat q, const key& k, double floor = 0) {
+    const half_angle half = geodesic_half_angle(q, k.rotation);
+    // atan2(s, c) <= s / c for c > 0, which is the angle to a hair where it is small.
+    if (half.cos > 0 && from_radians(2 * half.sin / half.cos, angle_unit::degrees) * (1 + 1e-12) < floor) return 0;
+    return from_radians(geodesic_angle(half), angle_unit::degrees);
 }
 
 /// A vector channel between keys `a` and `b` at `h`, as resample plays it.
@@ -78,7 +82,8 @@ double track_reducer::translation_error(const key& a, const key& b, double h, co
 }
 
 track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, std::optional<std::size_t> before,
-                                             std::optional<std::size_t> after, bool whole) const {
+                                             std::optional<std::size_t> after, bool whole, double floor) const {
+    floor = std::min(floor, opts_.tol_deg);  // a key out of tolerance is always worked out
     const key& a = keys_[from];
     const key& b = keys_[to];
     errors e;
@@ -90,7 +95,7 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
         const key& k = keys_[i];
         if (channels_of(k) != channels_of(a)) return {false, e.deg, e.translation, i};
         const double h = (k.time - a.time) / (b.time - a.time);
-        const double deg = rotation_error(curve.at(h), k);
+        const double deg = rotation_error(curve.at(h), k, floor);
         const double translation = translation_error(a, b, h, k);
         e.deg = std::max(e.deg, deg), e.translation = std::max(e.translation, translation);
         if (deg <= opts_.tol_deg && translation <= opts_.tol_translation) continue;
@@ -145,7 +150,7 @@ track_reducer::reach track_reducer::reaches(std::size_t to) const {
 track_reducer::errors track_reducer::kept_errors(const reach& r) const {
     // A bound below the largest error so far changes nothing the summary says.
     if (r.deg_exact || r.deg < summary_.worst_deg) return {true, r.deg_exact ? r.deg : 0, r.translation};
-    return between(0, good_);
+    return between(0, good_, std::nullopt, std::nullopt, false, summary_.worst_deg);
 }
 
 void track_reducer::add(const key& k) {
