@@ -14,7 +14,9 @@ method and tolerance:
 - no two consecutive kept keys turn more than 180 degrees apart;
 - tolerance 0 drops only keys that replay exactly (the inside of runs of
   equal keys);
-- --report json agrees with the output; bad tolerances are one line, exit 2;
+- --report json agrees with the output, and its largest errors with the
+  replay; bad tolerances are one line, exit 2;
+- random keys resampled at 24 fps reduce to those keys, to the frame;
 - a glTF file is reduced in place: each sampler's kept keys are the input's
   32-bit floats, and (where installed) the Khronos validator accepts it.
 
@@ -324,12 +326,38 @@ def check_gltf(work, rng):
         ok("the reduced glTF file passes the Khronos validator")
 
 
+def check_found_again(work, rng):
+    """Random keys 5 frames apart, resampled at 24 fps: reduce finds the keys again, to the frame."""
+    keys = 2000
+    q = rng.normal(size=(keys, 4))
+    q /= np.linalg.norm(q, axis=1)[:, None]
+    path = os.path.join(work, "keys.csv")
+    with open(path, "w") as f:
+        f.write("time,qw,qx,qy,qz\n")
+        for i in range(keys):
+            f.write(",".join(repr(float(v)) for v in [i * 5 / 24, *q[i]]) + "\n")
+    rows, out = os.path.join(work, "rows.csv"), os.path.join(work, "found.csv")
+    status, _, err = run(["resample", path, "-o", rows])
+    status, text, err = run(["reduce", rows, "--tol", "0.01", "-o", out, "--report", "json"]) if status == 0 else \
+        (status, "", err)
+    if status != 0:
+        return fail(f"reduce of resampled keys: status {status}, {err.strip()}")
+    frames = [int(r["frame"]) for r in csv.DictReader(open(out))]
+    largest = json.loads(text)["tracks"][0]["largest_error"]
+    if frames != [5 * i for i in range(keys)] or not largest < 1e-9:
+        fail(f"reduce of resampled keys: kept frames {frames[:6]}... ({len(frames)}), largest error {largest}")
+    else:
+        ok(f"reduce of {keys} random keys resampled at 24 fps finds them again ({5 * (keys - 1) + 1} rows -> "
+           f"{len(frames)}, largest error {largest:.3g} deg)")
+
+
 def main():
     rng = np.random.default_rng(34)
     with tempfile.TemporaryDirectory() as work:
         data = tracks(rng)
         check_csv(work, data)
         check_report(work, data)
+        check_found_again(work, rng)
         check_bad(work)
         check_gltf(work, rng)
     print(f"reduce_test: {checks} checks, {len(failures)} failures")

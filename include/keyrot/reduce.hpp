@@ -65,9 +65,10 @@ private:
     errors between(std::size_t from, std::size_t to, std::optional<std::size_t> before = std::nullopt,
                    std::optional<std::size_t> after = std::nullopt, bool whole = false, double floor = 0) const;
     /// What a stretch tried was found to hold: whether every key is within
-    /// tolerance (between(0, to).ok), the largest rotation error (or, where
-    /// deg_exact is false, a bound at least as large) and the largest
-    /// translation error (where ok).
+    /// tolerance (between(0, to).ok), the largest rotation error (exact
+    /// where it is more than the summary's largest so far; where deg_exact
+    /// is false, a bound at least as large) and the largest translation
+    /// error (where ok).
     struct reach {
         bool ok = false;
         double deg = 0;
@@ -75,8 +76,9 @@ private:
         double translation = 0;
     };
     /// The probes' question: for slerp, most keys are answered without the
-    /// exact curve (core/arc_screen.hpp).
-    reach reaches(std::size_t to) const;
+    /// exact curve (core/arc_screen.hpp), but at the search's `last` probe,
+    /// which is kept if it holds.
+    reach reaches(std::size_t to, bool last) const;
     /// The errors of the stretch kept, from keys_[0] to keys_[good_], found `r`:
     /// exact where they could change what the summary says.
     errors kept_errors(const reach& r) const;

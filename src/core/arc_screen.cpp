@@ -65,7 +65,7 @@ arc_screen::finding arc_screen::at(double h, quat k) noexcept {
     return {verdict::unsure, sin_off_sq};
 }
 
-double arc_screen::most_deg(double sin_off_sq) const noexcept {
+double arc_screen::most_deg(double sin_off_sq) noexcept {
     return 360 / std::numbers::pi * std::asin(std::min(1.0, std::sqrt(sin_off_sq) + absolute)) * (1 + relative);
 }
 

@@ -34,8 +34,9 @@ public:
     /// the arc's great circle, so a probe that fails at once pays no atan2.
     finding at(double h, quat k) noexcept;
     /// At least the exact comparison's angle, in degrees, for a key whose
-    /// finding had `sin_off_sq` (or the largest of several).
-    double most_deg(double sin_off_sq) const noexcept;
+    /// finding had `sin_off_sq` (or the largest of several); most_deg(0) is
+    /// the least bound a screen gives.
+    static double most_deg(double sin_off_sq) noexcept;
 
 private:
     quat a_, w_;        // the arc: cos(h theta) a + sin(h theta) w / |w|, w = b - (a.b) a

@@ -108,12 +108,17 @@ track_reducer::errors track_reducer::between(std::size_t from, std::size_t to, s
     return e;
 }
 
-track_reducer::reach track_reducer::reaches(std::size_t to) const {
+track_reducer::reach track_reducer::reaches(std::size_t to, bool last) const {
     const auto exactly = [&] {
-        const errors e = between(0, to);
+        // (the errors below the largest so far are not worked out: they change nothing the summary says)
+        const errors e = between(0, to, std::nullopt, std::nullopt, false, summary_.worst_deg);
         return reach{e.ok, e.deg, true, e.translation};
     };
-    if (opts_.how != method::slerp) return exactly();
+    // The search's last probe is kept if it holds, and measured exactly
+    // then while the largest error so far is below any bound the screen
+    // gives (keys on the arcs but for rounding): checked exactly at once, it
+    // needs no second pass.
+    if (opts_.how != method::slerp || (last && summary_.worst_deg < arc_screen::most_deg(0))) return exactly();
     const key& a = keys_[0];
     const key& b = keys_[to];
     if (!played_between(a, b, 0, to)) return {};
@@ -144,7 +149,7 @@ track_reducer::reach track_reducer::reaches(std::size_t to) const {
         translation = std::max(translation, moved);
     }
     if (!screened) return {true, exact_deg, true, translation};
-    return {true, std::max(screen.most_deg(sin_off_sq), exact_deg), false, translation};
+    return {true, std::max(arc_screen::most_deg(sin_off_sq), exact_deg), false, translation};
 }
 
 track_reducer::errors track_reducer::kept_errors(const reach& r) const {
@@ -187,14 +192,15 @@ void track_reducer::advance(bool end) {
         if (limit > newest && !end) return;  // the next key to try has not come
         const std::size_t probe = std::min(limit, newest);
         if (probe != good_) {
-            reach r = reaches(probe);
+            // (a probe that holds at the longest stretch, or at the end, is kept)
+            reach r = reaches(probe, probe == max_stretch || (end && probe == newest));
             if (r.ok) {
                 good_ = probe, good_reach_ = r;
                 continue;
             }
             for (std::size_t bad = probe; bad - good_ > 1;) {
                 const std::size_t mid = good_ + (bad - good_) / 2;
-                if ((r = reaches(mid)).ok)
+                if ((r = reaches(mid, bad - good_ == 2)).ok)
                     good_ = mid, good_reach_ = r;
                 else
                     bad = mid;

@@ -9,15 +9,15 @@
 // --baseline, another keyrot binary (say, before a change) runs the same
 // commands in the same turns, and the ratio of the two is printed. Last,
 // `compare` and `info` of 200,000 and 1,000,000 resampled rows, each against
-// `resample` of the same rows; a JSON document read whole against the same
-// keys streamed. First of all, the floor: the 1M-frame job
+// `resample` of the same rows; reduce of the 1,000,000 rows against convert
+// of them; a JSON document read whole against the same keys streamed. First of all, the floor: the 1M-frame job
 // against keyrot_floor (the same input parsed by keyrot's reader and as
 // many numbers printed, with no math, on two threads: with std::to_chars,
 // and with keyrot's number writer), the same job with squad and with matrix
 // output (and the floor of matrix rows), and the scipy script, taking turns,
 // and summary lines of the ratios and of the CPU times.
 //
-// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor|start-up|json]
+// Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor|start-up|json|reduce]
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <fcntl.h>
@@ -201,6 +201,27 @@ void json_read_whole(const std::string& keyrot, const std::string& baseline, con
     fmt::print("{:<34} {:>10.2f}\n", "  ratio (keyrot / baseline)", r[1].median_s / r[2].median_s);
 }
 
+/// reduce of the 1M rows resample writes (the floor's track, 200,000 keys,
+/// resampled: keys on the arcs between the track's keys, which a reduce
+/// finds again) against convert of the same rows, in the same turns (and
+/// the baseline's reduce, if given).
+void reduce_against_convert(const std::string& keyrot, const std::string& baseline, const std::string& dir, int runs) {
+    const std::string track = dir + "/reduce_track.csv", rows = dir + "/reduce_rows.csv";
+    const std::size_t count = write_track(track, 200000);  // the rows resample writes
+    run({keyrot, "resample", track, "-o", rows});
+    std::vector<command> commands = {{{keyrot, "reduce", rows, "--tol", "0.01", "-o", dir + "/reduced.csv"}},
+                                     {{keyrot, "convert", rows, "-o", dir + "/converted.csv"}}};
+    if (!baseline.empty())
+        commands.push_back({{baseline, "reduce", rows, "--tol", "0.01", "-o", dir + "/reduced_baseline.csv"}});
+    const auto r = repeat(commands, runs);
+    print_row("reduce of 1M rows, --tol 0.01", r[0], count);
+    print_row("convert of them (same turns)", r[1], count);
+    fmt::print("{:<34} {:>10.2f}\n", "  ratio (reduce / convert)", r[0].median_s / r[1].median_s);
+    if (baseline.empty()) return;
+    print_row("baseline reduce", r[2], count);
+    fmt::print("{:<34} {:>10.3f}\n", "  ratio (keyrot / baseline)", r[0].median_s / r[2].median_s);
+}
+
 /// A 10-key file, start to end, against a program that does nothing, in the
 /// same turns (and against `baseline`, if given).
 void start_up(const std::string& keyrot, const std::string& baseline, const std::string& dir, int runs) {
@@ -239,6 +260,11 @@ int main(int argc, char** argv) {
     if (only == "json") {
         print_header();
         json_read_whole(keyrot, baseline, dir, runs);
+        return 0;
+    }
+    if (only == "reduce") {
+        print_header();
+        reduce_against_convert(keyrot, baseline, dir, runs);
         return 0;
     }
     python = find_python(python);
@@ -357,6 +383,7 @@ int main(int argc, char** argv) {
         print_row("info of them", r[2], frames);
         fmt::print("{:<34} {:>10.2f}\n", "  ratio (info / resample)", r[2].median_s / r[0].median_s);
     }
+    reduce_against_convert(keyrot, baseline, dir, runs);
     json_read_whole(keyrot, baseline, dir, runs);
     start_up(keyrot, baseline, dir, runs);
 }

@@ -55,8 +55,8 @@ TEST_CASE("arc_screen: within and beyond only where the exact comparison agrees,
         if (v == arc_screen::verdict::beyond) CHECK(deg > tol);
         // The bound on the exact angle holds, and where the key's distance
         // was measured (not found off the great circle: 1) it is close, a hair over.
-        CHECK(deg <= screen.most_deg(f.sin_off_sq));
-        if (f.sin_off_sq < 1) CHECK(screen.most_deg(f.sin_off_sq) <= deg * (1 + 1e-8) + 1e-10);
+        CHECK(deg <= arc_screen::most_deg(f.sin_off_sq));
+        if (f.sin_off_sq < 1) CHECK(arc_screen::most_deg(f.sin_off_sq) <= deg * (1 + 1e-8) + 1e-10);
         if (v != arc_screen::verdict::beyond) CHECK(f.sin_off_sq < 1);
         // Keys clearly in or out are decided (the screen saves the exact curve there).
         if ((factor == 0.5 || factor == 2 || factor == 1 - 1e-6 || factor == 1 + 1e-6) && tol >= 1e-3) {
@@ -101,7 +101,7 @@ TEST_CASE("arc_screen: keys off the arc's great circle, by a hair or plainly, wi
             const double deg = exact_deg(a, b, h, k);
             if (f.v == arc_screen::verdict::within) CHECK(deg <= tol);
             if (f.v == arc_screen::verdict::beyond) CHECK(deg > tol);
-            CHECK(deg <= screen.most_deg(f.sin_off_sq));
+            CHECK(deg <= arc_screen::most_deg(f.sin_off_sq));
             off_circle += f.v == arc_screen::verdict::beyond && f.sin_off_sq == 1;
             // Clearly in or out, on arcs long enough for their circle to be sure.
             if ((factor <= 1 - 1e-6 || factor >= 1 + 1e-6) && apart >= 1e-3) ++clear, decided += f.v != arc_screen::verdict::unsure;
@@ -131,5 +131,5 @@ TEST_CASE("arc_screen: not used for keys more than 180 degrees apart, equal keys
           arc_screen::verdict::unsure);
     arc_screen opposite(a, -a, sin_tol);
     CHECK(opposite.at(0.5, a).v == arc_screen::verdict::unsure);
-    CHECK(opposite.most_deg(opposite.at(0.5, a).sin_off_sq) >= 180);
+    CHECK(arc_screen::most_deg(opposite.at(0.5, a).sin_off_sq) >= 180);
 }
