@@ -169,10 +169,7 @@ public:
     /// The sign add() gives rotation q coming after a key whose rotation
     /// (with its sign) is `prev`, without adding it: for every method but
     /// cubic, which always turns the short way.
-    quat signed_after(quat prev, quat q) const noexcept {
-        const bool flips = way_ == path::shortest && how_ != method::cubicspline;
-        return flips && dot(prev, q) < 0 ? -q : q;
-    }
+    quat signed_after(quat prev, quat q) const noexcept { return flips() && dot(prev, q) < 0 ? -q : q; }
     /// The next segment whose keys (and look-ahead) have arrived; with
     /// `end` (no more keys) also the last one. False when there is none.
     /// Throws spline_error for a cubic track whose spline does not converge.
@@ -186,6 +183,8 @@ private:
         quat q, s;
         std::array<double, 3> e;
     };
+    /// Whether a key's sign is set by the one before it.
+    bool flips() const noexcept { return way_ == path::shortest && how_ != method::cubicspline; }
     method how_;
     path way_;
     std::optional<euler_seq> seq_;

@@ -234,7 +234,7 @@ quat segment_builder::add(const key& k) {
         c.times.push_back(k.time), c.keys.push_back(q), c.velocity.push_back(guess);
         return q;
     }
-    if (!window_.empty()) q = signed_after(window_.back().q, q);
+    if (flips() && !window_.empty() && dot(window_.back().q, q) < 0) q = -q;
     std::array<double, 3> e{};
     if (how_ == method::euler) e = k.euler ? *k.euler : to_euler(k.rotation, *seq_).angles;
     window_.push_back({k.time, q, q, e});  // s = q until both neighbours are known
