@@ -338,8 +338,9 @@ def check_found_again(work, rng):
             f.write(",".join(repr(float(v)) for v in [i * 5 / 24, *q[i]]) + "\n")
     rows, out = os.path.join(work, "rows.csv"), os.path.join(work, "found.csv")
     status, _, err = run(["resample", path, "-o", rows])
-    status, text, err = run(["reduce", rows, "--tol", "0.01", "-o", out, "--report", "json"]) if status == 0 else \
-        (status, "", err)
+    if status != 0:
+        return fail(f"resample of random keys: status {status}, {err.strip()}")
+    status, text, err = run(["reduce", rows, "--tol", "0.01", "-o", out, "--report", "json"])
     if status != 0:
         return fail(f"reduce of resampled keys: status {status}, {err.strip()}")
     frames = [int(r["frame"]) for r in csv.DictReader(open(out))]

@@ -10,12 +10,13 @@
 // commands in the same turns, and the ratio of the two is printed. Last,
 // `compare` and `info` of 200,000 and 1,000,000 resampled rows, each against
 // `resample` of the same rows; reduce of the 1,000,000 rows against convert
-// of them; a JSON document read whole against the same keys streamed. First of all, the floor: the 1M-frame job
-// against keyrot_floor (the same input parsed by keyrot's reader and as
-// many numbers printed, with no math, on two threads: with std::to_chars,
-// and with keyrot's number writer), the same job with squad and with matrix
-// output (and the floor of matrix rows), and the scipy script, taking turns,
-// and summary lines of the ratios and of the CPU times.
+// of them; a JSON document read whole against the same keys streamed. First
+// of all, the floor: the 1M-frame job against keyrot_floor (the same input
+// parsed by keyrot's reader and as many numbers printed, with no math, on
+// two threads: with std::to_chars, and with keyrot's number writer), the
+// same job with squad and with matrix output (and the floor of matrix
+// rows), and the scipy script, taking turns, and summary lines of the
+// ratios and of the CPU times.
 //
 // Usage: keyrot_bench [--runs N] [--keyrot PATH] [--baseline PATH] [--python PATH] [--dir DIR] [--only floor|start-up|json|reduce]
 #include <fmt/format.h>
@@ -171,6 +172,18 @@ void print_row(const std::string& name, const summary& m, std::size_t frames) {
                m.ok ? "" : "  FAILED");
 }
 
+/// A ratio under the rows it compares.
+void print_ratio(const std::string& of, double ratio, int decimals = 2) {
+    fmt::print("{:<34} {:>10.{}f}\n", "  ratio (" + of + ")", ratio, decimals);
+}
+
+/// The baseline's row, and keyrot's time (`m`) over the baseline's.
+void print_baseline(const std::string& name, const summary& base, const summary& m, std::size_t count,
+                    int decimals = 3) {
+    print_row(name, base, count);
+    print_ratio("keyrot / baseline", m.median_s / base.median_s, decimals);
+}
+
 /// A JSON document read whole (a setting after the keys it applies to, as
 /// a script that writes "keys" first does: it is known only at the end)
 /// against the same keys streamed: the whole read must stay linear in the
@@ -195,10 +208,8 @@ void json_read_whole(const std::string& keyrot, const std::string& baseline, con
     const auto r = repeat(commands, runs);
     print_row("JSON of 0.1M keys, streamed", r[0], keys);
     print_row("the same read whole", r[1], keys);
-    fmt::print("{:<34} {:>10.2f}\n", "  ratio (whole / streamed)", r[1].median_s / r[0].median_s);
-    if (baseline.empty()) return;
-    print_row("baseline, read whole", r[2], keys);
-    fmt::print("{:<34} {:>10.2f}\n", "  ratio (keyrot / baseline)", r[1].median_s / r[2].median_s);
+    print_ratio("whole / streamed", r[1].median_s / r[0].median_s);
+    if (!baseline.empty()) print_baseline("baseline, read whole", r[2], r[1], keys, 2);
 }
 
 /// reduce of the 1M rows resample writes (the floor's track, 200,000 keys,
@@ -216,10 +227,8 @@ void reduce_against_convert(const std::string& keyrot, const std::string& baseli
     const auto r = repeat(commands, runs);
     print_row("reduce of 1M rows, --tol 0.01", r[0], count);
     print_row("convert of them (same turns)", r[1], count);
-    fmt::print("{:<34} {:>10.2f}\n", "  ratio (reduce / convert)", r[0].median_s / r[1].median_s);
-    if (baseline.empty()) return;
-    print_row("baseline reduce", r[2], count);
-    fmt::print("{:<34} {:>10.3f}\n", "  ratio (keyrot / baseline)", r[0].median_s / r[2].median_s);
+    print_ratio("reduce / convert", r[0].median_s / r[1].median_s);
+    if (!baseline.empty()) print_baseline("baseline reduce", r[2], r[0], count);
 }
 
 /// A 10-key file, start to end, against a program that does nothing, in the
@@ -281,10 +290,6 @@ int main(int argc, char** argv) {
     };
     const auto print_per_million = [](const std::string& what, const summary& m, std::size_t count) {
         fmt::print("{:<34} {:>10.3f}\n", "  per million " + what, m.median_s * 1e6 / static_cast<double>(count));
-    };
-    const auto print_baseline = [&](const summary& base, const summary& m, std::size_t frames) {
-        print_row("baseline (same turns)", base, frames);
-        fmt::print("{:<34} {:>10.3f}\n", "  ratio (keyrot / baseline)", m.median_s / base.median_s);
     };
     {
         // The floor: keyrot against parsing and printing alone.
@@ -357,7 +362,7 @@ int main(int argc, char** argv) {
             print_row("keyrot, the same to a new file", results[commands.size() - 1 - !baseline.empty()], frames);
             print_per_million("frames", results[commands.size() - 1 - !baseline.empty()], frames);
         }
-        if (!baseline.empty()) print_baseline(results.back(), results[0], frames);
+        if (!baseline.empty()) print_baseline("baseline (same turns)", results.back(), results[0], frames);
         if (python.empty()) {
             fmt::print("  scipy: not run (no python3 with numpy and scipy; apt-get install python3-scipy)\n");
         } else if (with_scipy) {
@@ -379,9 +384,9 @@ int main(int argc, char** argv) {
                               runs);
         print_row(fmt::format("resample of {:.1f}M rows", static_cast<double>(frames) / 1e6), r[0], frames);
         print_row("compare of them and another", r[1], frames);
-        fmt::print("{:<34} {:>10.2f}\n", "  ratio (compare / resample)", r[1].median_s / r[0].median_s);
+        print_ratio("compare / resample", r[1].median_s / r[0].median_s);
         print_row("info of them", r[2], frames);
-        fmt::print("{:<34} {:>10.2f}\n", "  ratio (info / resample)", r[2].median_s / r[0].median_s);
+        print_ratio("info / resample", r[2].median_s / r[0].median_s);
     }
     reduce_against_convert(keyrot, baseline, dir, runs);
     json_read_whole(keyrot, baseline, dir, runs);
