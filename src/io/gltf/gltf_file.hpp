@@ -1,9 +1,10 @@
 #pragma once
 // A glTF 2.0 file as it is stored: its JSON (from a .gltf, or a .glb's JSON
-// chunk), its buffers (the .glb's BIN chunk, base64 data: URIs, files
-// beside it), and its accessors decoded as the specification says.
+// chunk), and its buffers (the .glb's BIN chunk, base64 data: URIs, files
+// beside it). Accessors: gltf_accessor.hpp.
 #include <nlohmann/json.hpp>
 
+#include <cstdint>
 #include <istream>
 #include <optional>
 #include <string>
@@ -34,34 +35,13 @@ struct gltf_file {
 gltf_file load_gltf(std::istream& in, format f, const std::string& source, const std::string& directory,
                     std::size_t max_bytes);
 
-/// What a reader takes from an accessor: its type ("SCALAR", "VEC3",
-/// "VEC4") and whether normalised BYTE, UNSIGNED_BYTE, SHORT and
-/// UNSIGNED_SHORT components are read (as well as FLOAT).
-struct accessor_kind {
-    std::string_view type;
-    bool normalized_integers = false;
-};
-
-/// An accessor's count, and how many of its elements the file stores: all
-/// with a bufferView; else its sparse substitutes, the rest being 0. So a
-/// reader can check what the count claims before read_accessor allocates it.
-struct accessor_size {
-    std::size_t count, stored;
-};
-accessor_size size_of_accessor(const gltf_file& file, const gltf_json& index, const std::string& path);
-
-/// The elements of accessor `index` (a JSON value, for its checks), their
-/// components one after another, decoded as the specification says
-/// (byteStride, normalised integers, sparse substitution). `path` names what
-/// refers to it, for messages: "walk.glb: animations[0].samplers[2].output:
-/// accessor 14 reads past the end of buffer 0".
-/// They go into `values`, whose memory is reused.
-void read_accessor(gltf_file& file, const gltf_json& index, const std::string& path, const accessor_kind& kind,
-                   std::vector<double>& values);
-
 /// Buffer `i`'s bytes (the BIN chunk, a data: URI's, a file's), read on
 /// first use. Precondition: i indexes buffers.
 std::string_view buffer_bytes(gltf_file& file, std::size_t i);
+
+/// The little-endian unsigned integer of `bytes` (1 to 4) bytes at `p`, as
+/// glTF stores every number.
+std::uint32_t little_endian(const char* p, int bytes);
 
 /// An extension that changes nothing keyrot reads or writes of an
 /// animation (a material's, a texture's, a light's): a file that requires

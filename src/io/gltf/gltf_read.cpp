@@ -10,7 +10,7 @@
 #include <set>
 #include <span>
 
-#include "io/gltf/gltf_file.hpp"
+#include "io/gltf/gltf_accessor.hpp"
 #include "keyrot/interpolate.hpp"
 #include "keyrot/tolerances.hpp"
 

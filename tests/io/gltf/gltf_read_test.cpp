@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "helpers.hpp"
-#include "io/gltf/gltf_file.hpp"
+#include "io/gltf/gltf_accessor.hpp"
 #include "io/open.hpp"
 #include "reading.hpp"
 
@@ -135,6 +135,34 @@ TEST_CASE("glTF: normalised SHORT rotations are max(c / 32767, -1), and byteStri
     CHECK(error_of(head_gltf(bin, view, R"({"bufferView": 1, "componentType": 5122, "count": 2, "type": "VEC4"})"),
                    format::gltf)
               .starts_with("in: animations[0].samplers[0].output"));
+}
+
+TEST_CASE("glTF: FLOAT components are the stored floats, packed or interleaved (byteStride)") {
+    // Two rotations of four floats each, as (x, y, z, w), values no double
+    // rounding could give back exactly; packed, then with 8 bytes of
+    // something else after each (stride 24).
+    const std::vector<float> stored{0.1f, -0.2f, 0.3f, 0.9f, -1e-30f, 3e38f, 0.5f, -0.75f};
+    const auto element_bytes = [&](std::size_t i, const std::string& pad) {
+        std::string bytes;
+        for (std::size_t j = 0; j < 4; ++j) put(bytes, stored[4 * i + j]);
+        return bytes + pad;
+    };
+    std::string times;
+    put(times, 0.0f);
+    put(times, 1.0f);
+    const std::vector<double> widened(stored.begin(), stored.end());
+    for (const std::string& pad : {std::string(), std::string("padding!")}) {
+        CAPTURE(pad);
+        const std::string bin = times + element_bytes(0, pad) + element_bytes(1, pad);
+        const std::string stride = pad.empty() ? "" : R"(, "byteStride": 24)";
+        const std::string view = R"({"buffer": 0, "byteOffset": 8, "byteLength": )" + std::to_string(bin.size() - 8) +
+                                 stride + "}";
+        std::istringstream in(head_gltf(bin, view, float_accessor));
+        gltf_file file = load_gltf(in, format::gltf, "in", ".", default_max_bytes);
+        std::vector<double> values(20, 7.0);  // (longer before: what it held goes)
+        read_accessor(file, gltf_json(std::size_t{1}), "rotation", {"VEC4", true}, values);
+        CHECK(values == widened);
+    }
 }
 
 TEST_CASE("glTF: errors name the JSON path of what is wrong") {
