@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 #include <span>
@@ -113,6 +114,12 @@ void read_sampler(gltf_file& file, const gltf_json& sampler, const std::string& 
         }
 }
 
+/// `from` into the start of `to`: a few numbers, copied in place rather
+/// than by a call to memmove.
+void put(std::span<const double> from, std::span<double> to) {
+    for (std::size_t j = 0; j < from.size(); ++j) to[j] = from[j];
+}
+
 /// The curve's components at `time` within its keys, and, for
 /// CUBICSPLINE, their derivative per second there (zero otherwise), as the
 /// specification interpolates them: LINEAR component-wise (a rotation's
@@ -120,11 +127,10 @@ void read_sampler(gltf_file& file, const gltf_json& sampler, const std::string& 
 /// first or last value (as glTF clamps).
 void evaluate(const channel_curve& c, double time, std::span<double> value, std::span<double> slope) {
     std::fill(slope.begin(), slope.end(), 0.0);
-    const auto put = [&](std::span<const double> v) { std::copy(v.begin(), v.end(), value.begin()); };
-    if (time <= c.times.front()) return put(c.get(0, 0));
-    if (time >= c.times.back()) return put(c.get(c.keys() - 1, 0));
+    if (time <= c.times.front()) return put(c.get(0, 0), value);
+    if (time >= c.times.back()) return put(c.get(c.keys() - 1, 0), value);
     const std::size_t i = c.key_before(time);
-    if (c.times[i] == time || c.how == method::step) return put(c.get(i, 0));
+    if (c.times[i] == time || c.how == method::step) return put(c.get(i, 0), value);
     const double seconds = c.times[i + 1] - c.times[i], h = (time - c.times[i]) / seconds;
     const auto v0 = c.get(i, 0), v1 = c.get(i + 1, 0);
     if (c.how == method::cubicspline) {
@@ -376,7 +382,8 @@ private:
         full_spline_key s{};
         if (rotation_) {
             std::array<double, 4> v{}, in{}, out{};
-            const std::optional<std::size_t> key = components_at(*rotation_, t, true, v, in, out);
+            const std::size_t i = components_at(*rotation_, t, true, v, tangents(std::span(in)), tangents(std::span(out)));
+            const bool key = i != between_keys;
             s.rotation = {v[0], v[1], v[2], v[3]};
             if (!key && rotation_->how == method::slerp && t > rotation_->times.front() && t < rotation_->times.back())
                 s.rotation = slerp_at(*rotation_, t);
@@ -387,7 +394,7 @@ private:
             // Where make_key may say something of the key (zero, or renormalised): formatted only then.
             if (std::fabs(norm(q) - 1) > tol::unit_norm) {
                 const channel_curve& other = translation_ ? *translation_ : scale_ ? *scale_ : *weights_;
-                raw.at.path = key ? fmt::format("{}.output[{}]", rotation_->path, *key)
+                raw.at.path = key ? fmt::format("{}.output[{}]", rotation_->path, i)
                                   : fmt::format("{}.input", other.path);
             }
         } else {
@@ -400,27 +407,33 @@ private:
         if (weights_) {
             // Held outside its keys, as glTF clamps: every key of the track has weights.
             const std::size_t n = weights_->width;
-            raw.weights.resize(n), s.weights_in.resize(n), s.weights_out.resize(n);
+            raw.weights.resize(n);
+            if (spline_) s.weights_in.resize(n), s.weights_out.resize(n);
             components_at(*weights_, t, true, raw.weights, s.weights_in, s.weights_out);
         }
         if (spline_) raw.spline = std::move(s);
     }
 
+    /// Room for a channel's tangents, where the track has a CUBICSPLINE
+    /// channel; none otherwise (no channel has any, and none is asked for).
+    std::span<double> tangents(std::span<double> room) const { return spline_ ? room : room.first(0); }
+
     /// Channel `c` at time `t` (one of the track's key times): its key's
     /// value there and, for CUBICSPLINE, the key's tangents; or the curve's
     /// value and slope (LINEAR component-wise). With `held`, the channel
     /// holds its first and last values beyond its keys, so the tangents
-    /// there are zero. Returns the key's index where `t` is one of c's keys.
-    std::optional<std::size_t> components_at(const channel_curve& c, double t, bool held, std::span<double> value,
+    /// there are zero. Returns the key's index where `t` is one of c's
+    /// keys, else between_keys. (Not an optional: GCC returns that through
+    /// memory in pieces, and reading it back stalls.)
+    std::size_t components_at(const channel_curve& c, double t, bool held, std::span<double> value,
                                              std::span<double> in, std::span<double> out) const {
         const auto key = c.times.begin() + static_cast<std::ptrdiff_t>(c.first_key_from(t));
         if (key == c.times.end() || *key != t) {
             evaluate(c, t, value, in);
             std::copy(in.begin(), in.end(), out.begin());
-            return std::nullopt;
+            return between_keys;
         }
         const std::size_t i = static_cast<std::size_t>(key - c.times.begin());
-        const auto put = [](std::span<const double> from, std::span<double> to) { std::copy(from.begin(), from.end(), to.begin()); };
         put(c.get(i, 0), value);
         std::fill(in.begin(), in.end(), 0.0), std::fill(out.begin(), out.end(), 0.0);
         if (c.how == method::cubicspline) {
@@ -444,10 +457,12 @@ private:
         }
         if (t < c.times.front() || t > c.times.back()) return std::nullopt;
         std::array<double, 3> v{}, before{}, after{};
-        components_at(c, t, false, v, before, after);
+        components_at(c, t, false, v, tangents(std::span(before)), tangents(std::span(after)));
         in = {before[0], before[1], before[2]}, out = {after[0], after[1], after[2]};
         return vec3{v[0], v[1], v[2]};
     }
+
+    static constexpr std::size_t between_keys = std::numeric_limits<std::size_t>::max();
 
     std::shared_ptr<gltf_source> loaded_;
     gltf_file& file_;  // loaded_'s
