@@ -65,6 +65,9 @@ vec3 vector_part(quat q) noexcept;
 
 /// q / |q|. Precondition: q is finite and non-zero.
 quat normalized(quat q) noexcept;
+/// The same, given n = norm(q): a caller that has the norm already saves
+/// working it out again (a square root, whose latency is most of a norm).
+quat normalized(quat q, double n) noexcept;
 /// v or q times the power of two that puts its largest component in [1, 2):
 /// exactly the same direction, with a length that can neither pass the
 /// largest double nor lose digits among the subnormals; zero comes back

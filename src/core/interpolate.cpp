@@ -62,7 +62,8 @@ KEYROT_FMA_CLONES quat nlerp(quat a, quat b, double h) noexcept {
     const double g = 1 - h;
     const quat l{std::fma(h, b.w, g * a.w), std::fma(h, b.x, g * a.x), std::fma(h, b.y, g * a.y),
                  std::fma(h, b.z, g * a.z)};
-    return norm(l) == 0 ? a : normalized(l);
+    const double n = norm(l);
+    return n == 0 ? a : normalized(l, n);
 }
 
 quat squad_control(quat prev, quat cur, quat next) noexcept {

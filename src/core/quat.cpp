@@ -55,8 +55,9 @@ quat conjugate(quat q) noexcept { return {q.w, -q.x, -q.y, -q.z}; }
 
 vec3 vector_part(quat q) noexcept { return {q.x, q.y, q.z}; }
 
-quat normalized(quat q) noexcept {
-    double n = norm(q);
+quat normalized(quat q) noexcept { return normalized(q, norm(q)); }
+
+quat normalized(quat q, double n) noexcept {
     if (!(n > 1e-150 && n < 1e150)) {  // past the largest double, or among the subnormals
         q = rescaled(q);
         n = norm(q);

@@ -21,7 +21,7 @@ quat unit_quaternion(const raw_key& k, const key_settings& s, warnings& warn, bo
         warn.once("norm", fmt::format("{} ({}); such keys are normalised", what, where(warn.source(), k.at)));
         renormalised = true;
     }
-    return normalized(q);
+    return normalized(q, n);
 }
 
 quat axis_angle_rotation(const raw_key& k, const key_settings& s, const std::string& source) {

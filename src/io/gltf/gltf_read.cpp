@@ -392,7 +392,8 @@ private:
             const quat q = key || !(norm(s.rotation) > 0) ? s.rotation : normalized(s.rotation);
             raw.values = {q.w, q.x, q.y, q.z};
             // Where make_key may say something of the key (zero, or renormalised): formatted only then.
-            if (std::fabs(norm(q) - 1) > tol::unit_norm) {
+            // (|q|² is off 1 by more than |q| is: the square root only for a key that may be.)
+            if (std::fabs(dot(q, q) - 1) > tol::unit_norm && std::fabs(norm(q) - 1) > tol::unit_norm) {
                 const channel_curve& other = translation_ ? *translation_ : scale_ ? *scale_ : *weights_;
                 raw.at.path = key ? fmt::format("{}.output[{}]", rotation_->path, i)
                                   : fmt::format("{}.input", other.path);
