@@ -427,7 +427,7 @@ private:
     /// keys, else between_keys. (Not an optional: GCC returns that through
     /// memory in pieces, and reading it back stalls.)
     std::size_t components_at(const channel_curve& c, double t, bool held, std::span<double> value,
-                                             std::span<double> in, std::span<double> out) const {
+                              std::span<double> in, std::span<double> out) const {
         const auto key = c.times.begin() + static_cast<std::ptrdiff_t>(c.first_key_from(t));
         if (key == c.times.end() || *key != t) {
             evaluate(c, t, value, in);
