@@ -119,6 +119,17 @@ class Builder:
         self.json["nodes"].append({"name": "body", "mesh": 0, "skin": 0})
         self.json["scenes"][0]["nodes"].append(joints)
 
+    def morph_mesh(self, targets, weights=None):
+        """A mesh of one triangle with `targets` morph targets; returns its index."""
+        positions = self.accessor(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float), minmax=True)
+        mesh = {"primitives": [{"attributes": {"POSITION": positions},
+                                "targets": [{"POSITION": self.accessor(0.1 * (j + 1) * np.eye(3), minmax=True)}
+                                            for j in range(targets)]}]}
+        if weights is not None:
+            mesh["weights"] = weights
+        self.json.setdefault("meshes", []).append(mesh)
+        return len(self.json["meshes"]) - 1
+
     def accessor_raw(self, array, component, type_):
         acc = {"bufferView": self.view(array.tobytes()), "componentType": component, "count": len(array), "type": type_}
         self.json["accessors"].append(acc)

@@ -98,18 +98,6 @@ def weights_at(times, values, interp, t):
 
 
 # ---------------------------------------------------------------- files
-def morph_mesh(b, targets, weights=None):
-    """A mesh of one triangle with `targets` morph targets; returns its index."""
-    positions = b.accessor(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float), minmax=True)
-    mesh = {"primitives": [{"attributes": {"POSITION": positions},
-                            "targets": [{"POSITION": b.accessor(0.1 * (j + 1) * np.eye(3), minmax=True)}
-                                        for j in range(targets)]}]}
-    if weights is not None:
-        mesh["weights"] = weights
-    b.json.setdefault("meshes", []).append(mesh)
-    return len(b.json["meshes"]) - 1
-
-
 class Case:
     """A file, and per track the weights channel as a reader decodes it."""
 
@@ -139,7 +127,7 @@ def make_cases(work):
     # SimpleMorph's shape: a node with a mesh of two targets, animated in weights alone.
     c = Case("simple_morph.glb", "morph", [0.0, 1.0, 2.0, 3.0, 4.0],
              [[0, 0], [1, 0], [0, 1], [1, 1], [0, 0]], "LINEAR", 2)
-    mesh = morph_mesh(c.b, 2, [0.5, 0.5])
+    mesh = c.b.morph_mesh(2, [0.5, 0.5])
     c.b.json["nodes"] = [{"name": "morph", "mesh": mesh}]
     c.channel["node"] = 0
     c.b.animation([c.channel])
@@ -148,7 +136,7 @@ def make_cases(work):
     # A skinned character: joints' rotations, a face of four targets keyed STEP at other times.
     c = Case("face.gltf", "face", sorted(rng.uniform(0.05, 2.9, 9)), rng.uniform(0, 1, (9, 4)), "STEP", 4)
     c.b.skeleton(6)
-    mesh = morph_mesh(c.b, 4)
+    mesh = c.b.morph_mesh(4)
     c.b.json["nodes"].append({"name": "face", "mesh": mesh})
     c.b.json["scenes"][0]["nodes"].append(len(c.b.json["nodes"]) - 1)
     c.channel["node"] = len(c.b.json["nodes"]) - 1
@@ -161,7 +149,7 @@ def make_cases(work):
     # A node with its own rotation channel and three CUBICSPLINE weights, keyed from 0.3 s.
     times = [0.3, 0.8, 1.1, 1.9, 2.4]
     c = Case("cubic_face.gltf", "head", times, rng.uniform(-0.5, 1.5, (5, 3, 3)), "CUBICSPLINE", 3)
-    mesh = morph_mesh(c.b, 3)
+    mesh = c.b.morph_mesh(3)
     c.b.json["nodes"] = [{"name": "head", "mesh": mesh}]
     c.channel["node"] = 0
     rotation = {"node": 0, "path": "rotation", "times": [0.0, 1.0, 2.0],
@@ -173,7 +161,7 @@ def make_cases(work):
     # Normalised UNSIGNED_BYTE weights, as an exporter may store them.
     c = Case("byte_morph.glb", "blink", [0.0, 0.25, 0.5], [[0, 1], [1, 0.5], [0.2, 0]], "LINEAR", 2,
              G.UNSIGNED_BYTE)
-    mesh = morph_mesh(c.b, 2)
+    mesh = c.b.morph_mesh(2)
     c.b.json["nodes"] = [{"name": "blink", "mesh": mesh}]
     c.channel["node"] = 0
     c.b.animation([c.channel])
@@ -354,7 +342,7 @@ def bad_inputs(work):
     cases.append(("a weights channel of a node without a mesh", ["resample", p, "--to", "csv"],
                   "no_mesh.glb: animations[0].channels[0].target.node: a weights channel of node 0, which has no mesh"))
     b = G.Builder()
-    mesh = morph_mesh(b, 2)
+    mesh = b.morph_mesh(2)
     b.json["nodes"] = [{"name": "m", "mesh": mesh}]
     b.animation([{"node": 0, "path": "weights", "times": [0.0, 1.0, 2.0], "values": [[0.0], [1.0], [0.5]]}])
     p = os.path.join(work, "short.glb")

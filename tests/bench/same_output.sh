@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Two keyrot binaries give the same bytes: standard output, standard error,
 # files written with -o, and exit status, on data/, tests/good, tests/bad
-# (with their command lines), a spread of flags, and the conformance cases.
+# (with their command lines), glTF files of every kind of channel
+# (gltf_variety.py), a spread of flags, and the conformance cases.
 # Run by hand around a change that must not change behaviour:
 #   tests/bench/same_output.sh OLD_KEYROT NEW_KEYROT
 # With --outputs first, only what is written (standard output and files) is
@@ -17,6 +18,8 @@ fi
 old=$(realpath "$1")
 new=$(realpath "$2")
 root=$(cd "$(dirname "$0")/../.." && pwd)
+python=/usr/bin/python3
+[[ -x $python ]] || python=python3  # Debian's, with python3-scipy
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 runs=0 differ=0
@@ -78,6 +81,24 @@ for f in "$root"/data/*; do
     both compare "$key" "$answer" "$root/data/walk.csv" "$key" --report json
     both compare "$key" "$answer" "$root/data/walk.csv" --report csv
 done
+# glTF: channels merged on one track's key times, splines, weights; glTF out.
+if "$python" "$root/tests/bench/gltf_variety.py" "$work/gltf"; then
+    for f in "$work"/gltf/*; do
+        both resample "$f" --fps 24
+        both resample "$f" --fps 7 --rep euler --out-euler zyx --to ndjson
+        both resample "$f" --fps 24 --method squad --to json
+        both resample "$f" --fps 30 -o out.glb
+        both resample "$f" --fps 30 --method nlerp -o out.glb
+        both resample "$f" --fps 60 --compact -o out.glb
+        both convert "$f" --rep quat
+        both reduce "$f" --tol 0.5 -o out.glb
+        both reduce "$f" --tol 0.01 --report json --to csv
+        both info "$f" --segments
+    done
+else
+    echo "gltf_variety.py did not run" >&2
+    differ=$((differ + 1))
+fi
 for f in "$root"/data/*; do
     both resample "$f" --fps 5000
     both resample "$f" --fps 3000 --rep matrix4 -o out.ndjson
@@ -102,8 +123,6 @@ fi
 cat "$work/out.old"; cat "$work/err.old" >&2; exit \$s_old
 EOF
 chmod +x "$work/keyrot-both"
-python=/usr/bin/python3
-[[ -x $python ]] || python=python3  # Debian's, with python3-scipy
 if "$python" "$root/tests/conformance.py" "$work/keyrot-both" --cases 1500 >/dev/null; then
     runs=$((runs + 1500))
     if [[ -s $work/conformance.log ]]; then
