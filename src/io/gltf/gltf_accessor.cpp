@@ -195,8 +195,8 @@ void read_accessor(gltf_file& file, const gltf_json& index, const std::string& p
         values.assign(count * n, 0.0);
     } else if (code == 5126 && stride == element && std::endian::native == std::endian::little) {
         // Packed floats, as nearly every exporter writes them: widened in one
-        // pass the compiler vectorises (decoded() a component at a time is
-        // most of the reading).
+        // loop the compiler vectorises, not a component at a time through
+        // decoded() (a take's accessors are most of what is read).
         values.resize(count * n);
         const char* const from = bytes.data() + offset;
         for (std::size_t k = 0; k < values.size(); ++k) {
