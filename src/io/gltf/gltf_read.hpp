@@ -8,16 +8,9 @@
 
 #include "io/common/interface.hpp"
 #include "io/gltf/gltf_file.hpp"
+#include "io/gltf/gltf_tracks.hpp"
 
 namespace keyrot {
-
-/// Where a track of a glTF file came from: its animation and node, and the
-/// channels (indices into the animation's channels) it merges.
-struct gltf_track_origin {
-    std::size_t animation = 0, node = 0;
-    std::optional<std::size_t> rotation, translation, scale, weights;
-    std::size_t targets = 0;  ///< with weights: the morph targets of the node's mesh
-};
 
 /// A glTF input, kept for a glTF output that rewrites it: the file, and
 /// the origin of each of the document's tracks, in their order.
