@@ -99,15 +99,18 @@ int digit_count(std::uint64_t v) noexcept {
     return (v | 1) < powers_of_ten[count - 1] ? count - 1 : count;  // (v | 1: zero has one digit)
 }
 
+/// Writes the 17 decimal digits of v < 10^17, leading zeros included.
+void write_seventeen(char* out, std::uint64_t v) noexcept {
+    out[0] = static_cast<char>('0' + v / 10000000000000000);
+    write_sixteen(out + 1, v % 10000000000000000);
+}
+
 /// The decimal digits of a significand (at most 17 of them, as Dragonbox
 /// gives for a double), written as 17 with leading zeros and copied in
 /// fixed-size blocks: no loop or call depends on the digit count.
 class significand_digits {
 public:
-    explicit significand_digits(std::uint64_t v) noexcept : count_(digit_count(v)) {
-        digits_[0] = static_cast<char>('0' + v / 10000000000000000);
-        write_sixteen(digits_ + 1, v % 10000000000000000);
-    }
+    explicit significand_digits(std::uint64_t v) noexcept : count_(digit_count(v)) { write_seventeen(digits_, v); }
     int count() const noexcept { return count_; }
     /// Writes digits [from, count) at out, and up to 16 bytes of scratch after them.
     void copy(char* out, int from = 0) const noexcept {
@@ -166,10 +169,21 @@ char* write_shortest(char* out, double v) noexcept {
     static_assert(FMT_VERSION >= 90000 && FMT_VERSION < 100000,
                   "fmt::detail::dragonbox::to_decimal is fmt 9's: run the number writer's tests before taking another fmt");
     const auto decimal = fmt::detail::dragonbox::to_decimal(v);
-    const significand_digits digits(decimal.significand);
-    const int count = digits.count();
+    const int count = digit_count(decimal.significand);
     const int point = decimal.exponent + count;  // digits before the decimal point
-    if (point - 1 < -4 || point - 1 >= 16) {     // d[.ddd]e+XX
+    // 0.ddd or 0.000ddd with most digits (a rotation's components): the 17
+    // digits stored where they end, their leading zeros after `out`, rather
+    // than staged and copied (the copy's load spans the two stores that
+    // staged them, which the processor cannot forward: it waits for them).
+    if (point <= 0 && point - 1 >= -4 && count - point >= 15) {
+        char* const end = out + 2 - point + count;
+        std::memset(out, '0', 16);  // the zeros after the point that the digits' own do not reach
+        write_seventeen(end - 17, decimal.significand);
+        out[0] = '0', out[1] = '.';
+        return end;
+    }
+    const significand_digits digits(decimal.significand);
+    if (point - 1 < -4 || point - 1 >= 16) {  // d[.ddd]e+XX
         digits.copy(out + 1);
         out[0] = out[1];
         out[1] = '.';
