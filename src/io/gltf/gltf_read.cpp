@@ -248,7 +248,8 @@ private:
                 s.rotation = slerp_at(*rotation_, t);
             s.rotation_in = {in[0], in[1], in[2], in[3]}, s.rotation_out = {out[0], out[1], out[2], out[3]};
             // A value the curve passes between keys is not unit (a spline's, at least): it counts as given normalised.
-            const quat q = key || !(norm(s.rotation) > 0) ? s.rotation : normalized(s.rotation);
+            quat q = s.rotation;
+            if (const double n = key ? 0 : norm(q); n > 0) q = normalized(q, n);
             raw.values = {q.w, q.x, q.y, q.z};
             // Where make_key may say something of the key (zero, or renormalised): formatted only then.
             // (|q|² is off 1 by more than |q| is: the square root only for a key that may be.)
@@ -290,7 +291,7 @@ private:
         const auto key = c.times.begin() + static_cast<std::ptrdiff_t>(c.first_key_from(t));
         if (key == c.times.end() || *key != t) {
             evaluate(c, t, value, in);
-            std::copy(in.begin(), in.end(), out.begin());
+            put(in, out);
             return between_keys;
         }
         const std::size_t i = static_cast<std::size_t>(key - c.times.begin());
