@@ -238,19 +238,20 @@ private:
         const double t = times_[j];
         raw.reset();
         raw.time = t;
-        full_spline_key s{};
+        // Tangents only in a track with a CUBICSPLINE channel: a spline key
+        // zeroed for every other key would cost more than the rest here.
+        full_spline_key* const s = spline_ ? &raw.spline.emplace() : nullptr;
         if (rotation_) {
             std::array<double, 4> v{}, in{}, out{};
             const std::size_t i = components_at(*rotation_, t, true, v, tangents(std::span(in)), tangents(std::span(out)));
             const bool key = i != between_keys;
-            s.rotation = {v[0], v[1], v[2], v[3]};
+            quat q{v[0], v[1], v[2], v[3]};
             if (!key && rotation_->how == method::slerp && t > rotation_->times.front() && t < rotation_->times.back())
-                s.rotation = slerp_at(*rotation_, t);
-            s.rotation_in = {in[0], in[1], in[2], in[3]}, s.rotation_out = {out[0], out[1], out[2], out[3]};
+                q = slerp_at(*rotation_, t);
+            if (s) s->rotation = q, s->rotation_in = {in[0], in[1], in[2], in[3]}, s->rotation_out = {out[0], out[1], out[2], out[3]};
             // A value the curve passes between keys is not unit (a spline's, at least): it counts as given normalised.
-            quat q = s.rotation;
             if (const double n = key ? 0 : norm(q); n > 0) q = normalized(q, n);
-            raw.values = {q.w, q.x, q.y, q.z};
+            raw.values[0] = q.w, raw.values[1] = q.x, raw.values[2] = q.y, raw.values[3] = q.z;  // (reset zeroed the rest)
             // Where make_key may say something of the key (zero, or renormalised): formatted only then.
             // (|q|² is off 1 by more than |q| is: the square root only for a key that may be.)
             if (std::fabs(dot(q, q) - 1) > tol::unit_norm && std::fabs(norm(q) - 1) > tol::unit_norm) {
@@ -260,19 +261,21 @@ private:
             }
         } else {
             if (std::fabs(norm(rest_) - 1) > tol::unit_norm) raw.at.path = fmt::format("nodes[{}].rotation", node_);
-            raw.values = {rest_.w, rest_.x, rest_.y, rest_.z};
-            s.rotation = rest_;
+            raw.values[0] = rest_.w, raw.values[1] = rest_.x, raw.values[2] = rest_.y, raw.values[3] = rest_.z;
+            if (s) s->rotation = rest_;
         }
-        if (translation_) raw.translation = vector_at(*translation_, t, s.translation_in, s.translation_out);
-        if (scale_) raw.scale = vector_at(*scale_, t, s.scale_in, s.scale_out);
+        vec3 none;  // the tangents of a key without
+        if (translation_)
+            raw.translation = vector_at(*translation_, t, s ? s->translation_in : none, s ? s->translation_out : none);
+        if (scale_) raw.scale = vector_at(*scale_, t, s ? s->scale_in : none, s ? s->scale_out : none);
         if (weights_) {
             // Held outside its keys, as glTF clamps: every key of the track has weights.
             const std::size_t n = weights_->width;
             raw.weights.resize(n);
-            if (spline_) s.weights_in.resize(n), s.weights_out.resize(n);
-            components_at(*weights_, t, true, raw.weights, s.weights_in, s.weights_out);
+            if (s) s->weights_in.resize(n), s->weights_out.resize(n);
+            components_at(*weights_, t, true, raw.weights, s ? std::span(s->weights_in) : std::span<double>(),
+                          s ? std::span(s->weights_out) : std::span<double>());
         }
-        if (spline_) raw.spline = std::move(s);
     }
 
     /// Room for a channel's tangents, where the track has a CUBICSPLINE
