@@ -5,6 +5,7 @@
 #include <functional>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "keyrot/interpolate.hpp"
 #include "keyrot/track.hpp"
@@ -104,7 +105,7 @@ private:
     resample_options opts_;
     method how_;
     bool expected_;
-    std::deque<channel_key> keys_;  // the ones later frames may still need
+    std::vector<channel_key> keys_;  // the ones later frames may still need (a few: a deque costs more)
 };
 
 extern template class value_channel<vec3>;

@@ -104,7 +104,7 @@ bool value_channel<V>::at(double time, bool end, std::optional<V>& value) {
         value = channel_between(how_, a.time, a.value, a.out, b.time, b.value, b.in, time);
     }
     // keep the key before the next frame's segment
-    while (keys.size() > 1 && j > 1) keys.pop_front(), --j;
+    if (j > 1) keys.erase(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(j - 1));
     return true;
 }
 
