@@ -32,7 +32,9 @@ void append_base64(std::string& out, std::string_view bytes) {
 void append_float(std::string& out, float v) {
     std::uint32_t raw;
     std::memcpy(&raw, &v, 4);
-    for (std::size_t b = 0; b < 4; ++b) out += static_cast<char>(raw >> (8 * b) & 0xff);
+    char bytes[4];  // (appended at once: a character at a time costs a check each)
+    for (std::size_t b = 0; b < 4; ++b) bytes[b] = static_cast<char>(raw >> (8 * b) & 0xff);
+    out.append(bytes, 4);
 }
 
 void append_normalized_shorts(std::string& out, std::span<const double, 4> q) {
@@ -60,11 +62,12 @@ void append_normalized_shorts(std::string& out, std::span<const double, 4> q) {
         const bool tie = std::fabs(cos2 - best_cos2) <= 1e-15;
         if ((!tie && cos2 > best_cos2) || (tie && off < best_off)) best = up, best_cos2 = cos2, best_off = off;
     }
+    char bytes[8];
     for (std::size_t i = 0; i < 4; ++i) {
         const auto s = static_cast<std::uint16_t>(static_cast<std::int16_t>(down[i] + (best >> i & 1)));
-        out += static_cast<char>(s & 0xff);
-        out += static_cast<char>(s >> 8);
+        bytes[2 * i] = static_cast<char>(s & 0xff), bytes[2 * i + 1] = static_cast<char>(s >> 8);
     }
+    out.append(bytes, 8);
 }
 
 float single(double v, const std::string& where, const char* what) {
