@@ -248,10 +248,14 @@ private:
             quat q{v[0], v[1], v[2], v[3]};
             if (!key && rotation_->how == method::slerp && t > rotation_->times.front() && t < rotation_->times.back())
                 q = slerp_at(*rotation_, t);
-            if (s) s->rotation = q, s->rotation_in = {in[0], in[1], in[2], in[3]}, s->rotation_out = {out[0], out[1], out[2], out[3]};
+            if (s) {
+                s->rotation = q;
+                s->rotation_in = {in[0], in[1], in[2], in[3]}, s->rotation_out = {out[0], out[1], out[2], out[3]};
+            }
             // A value the curve passes between keys is not unit (a spline's, at least): it counts as given normalised.
             if (const double n = key ? 0 : norm(q); n > 0) q = normalized(q, n);
-            raw.values[0] = q.w, raw.values[1] = q.x, raw.values[2] = q.y, raw.values[3] = q.z;  // (reset zeroed the rest)
+            // (the other twelve values reset zeroed)
+            raw.values[0] = q.w, raw.values[1] = q.x, raw.values[2] = q.y, raw.values[3] = q.z;
             // Where make_key may say something of the key (zero, or renormalised): formatted only then.
             // (|q|² is off 1 by more than |q| is: the square root only for a key that may be.)
             if (std::fabs(dot(q, q) - 1) > tol::unit_norm && std::fabs(norm(q) - 1) > tol::unit_norm) {
@@ -264,7 +268,7 @@ private:
             raw.values[0] = rest_.w, raw.values[1] = rest_.x, raw.values[2] = rest_.y, raw.values[3] = rest_.z;
             if (s) s->rotation = rest_;
         }
-        vec3 none;  // the tangents of a key without
+        vec3 none;  // (where the tangents go that a key without a spline does not carry)
         if (translation_)
             raw.translation = vector_at(*translation_, t, s ? s->translation_in : none, s ? s->translation_out : none);
         if (scale_) raw.scale = vector_at(*scale_, t, s ? s->scale_in : none, s ? s->scale_out : none);
