@@ -23,6 +23,7 @@ VALIDATOR_JS: tests/gltf_validate.js, where the validator is installed
 test says so). Exit 0 when all pass, 1 otherwise; 77 (skip) without scipy.
 """
 import bisect
+import copy
 import csv
 import io
 import json
@@ -295,10 +296,23 @@ def make_cases(work):
         c.end(anim)
     cases.append((c, "glb"))
 
+    heavy = []
     for case, how in cases:
         case.path = os.path.join(work, case.name)
         case.b.write(case.path, how)
-    return [case for case, _ in cases]
+        # The same animation in a file that a model makes large: resampled into glTF, its tracks are
+        # made apart from each other, on threads of their own.
+        h = copy.copy(case)
+        h.name = "heavy_" + case.name
+        h.path = os.path.join(work, h.name)
+        h.b = copy.deepcopy(case.b)
+        h.b.detailed_mesh(HEAVY_VERTICES)
+        h.b.write(h.path, how)
+        heavy.append(h)
+    return [case for case, _ in cases], heavy
+
+
+HEAVY_VERTICES = 30000  # 360 kB of buffer: more than the quarter megabyte from which tracks are made apart
 
 
 VECTORS = {"translation": ("tx", "ty", "tz"), "scale": ("sx", "sy", "sz"), "weights": ("w0",)}
@@ -770,6 +784,55 @@ def validate(files):
 
 
 # ---------------------------------------------------------------- bad files
+def check_tracks_apart_say(work):
+    """Tracks made apart (a large file into glTF) say what the same keys say read in order: a
+    warning once, and of two bad keys the first in the file's order, with nothing written."""
+    global checks
+    rng = np.random.default_rng(7)
+    t = np.arange(200) / 30
+
+    def write(name, change):
+        b = G.Builder()
+        b.skeleton(8)
+        quats = [random_quats(rng, 200, 0.2) for _ in range(8)]
+        change(quats)
+        b.animation([{"node": j, "path": "rotation", "times": t, "values": quats[j]} for j in range(8)])
+        b.detailed_mesh(HEAVY_VERTICES)
+        path = os.path.join(work, name)
+        b.write(path, "glb")
+        return path
+
+    def long_and_zero(quats):
+        quats[2][50] *= 1.5  # renormalised, with a warning
+        quats[6][5] *= 1.5
+        quats[5][120] = 0  # a zero quaternion, and another one in a later track
+        quats[7][3] = 0
+
+    def long_only(quats):
+        quats[2][50] *= 1.5
+        quats[6][5] *= 1.5
+
+    for name, change, status_expected in (("apart_long.glb", long_only, 0), ("apart_zero.glb", long_and_zero, 2)):
+        path = write(name, change)
+        out, in_order = path + ".out.glb", path + ".out.csv"
+        status, _, err = run(["resample", path, "-o", out])
+        reference_status, _, reference_err = run(["resample", path, "--rep", "quat", "-o", in_order])
+        if status != status_expected or reference_status != status_expected or err != reference_err:
+            fail(f"{name} into .glb: status {status}, {err.strip()!r}; into .csv (keys in order): status "
+                 f"{reference_status}, {reference_err.strip()!r}")
+        elif status == 2 and ("samplers[5].output[120]" not in err.strip().split("\n")[-1] or "samplers[7]" in err
+                              or os.path.exists(out)):
+            fail(f"{name} into .glb: {err.strip()!r}, expected the error of samplers[5] (the first bad key), "
+                 f"and nothing written")
+        elif status == 0 and (err.count("warning") != 1 or not compare_frames(
+                f"{out} read back", open(in_order).read(), run(["convert", out, "--to", "csv", "--rep", "quat"])[1],
+                FLOAT32_DEG)):
+            fail(f"{name} into .glb: {err.strip()!r}, expected one warning, or frames not the CSV's")
+        else:
+            checks += 1
+            print(f"ok: {name} into .glb says what it says into .csv: {err.strip()}")
+
+
 def small_glb(path, joints, seed):
     """A .glb of `joints` joints, joint 1 turned by three random keys at 0, 0.5 and 1 s."""
     b = G.Builder()
@@ -970,7 +1033,7 @@ def check_unstored(work):
 
 def main():
     with tempfile.TemporaryDirectory() as work:
-        cases = make_cases(work)
+        cases, heavy = make_cases(work)
         for case in cases:
             for fps in (24, 30, 60):
                 check_resample(case, fps)
@@ -983,10 +1046,12 @@ def main():
         with open(cases[2].path, "rb") as f:  # a .gltf on standard input, its buffer a data: URI
             check_resample(cases[2], 30, stdin=f.read())
         written = []
-        for case in cases:
+        for case in cases + heavy:
             check_gltf_output(case, 30, "glb", written)
             check_gltf_output(case, 24, "gltf", written)
-        check_rig_layout(next(c for c in cases if c.name == "rig.glb"), written)
+        for rig in ("rig.glb", "heavy_rig.glb"):
+            check_rig_layout(next(c for c in cases + heavy if c.name == rig), written)
+        check_tracks_apart_say(work)
         check_cubic_kept(cases[2], work, written)
         check_step_output(cases[0], work, written)
         check_new_files(work, written)

@@ -135,6 +135,9 @@ public:
         return std::make_unique<spline_check>(*this, name);
     }
     bool checks_tracks() const override { return method_given_ && opts_.how == method::cubic; }
+    std::unique_ptr<row_source> for_track_apart() const override {
+        return std::make_unique<frame_rows>(opts_, method_given_, source_);
+    }
 
 private:
     input_error unsettled(const std::string& track, const location& first, const spline_error& e) const {

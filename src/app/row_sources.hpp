@@ -51,6 +51,18 @@ struct document_facts {
         tracks.back().last = std::move(k);
     }
 
+    /// The facts of tracks read apart from these (`later`), after them.
+    void append(document_facts&& later) {
+        named = named || later.named;
+        all_frames = all_frames && later.all_frames;
+        any_time = any_time || later.any_time;
+        frames = frames || later.frames;
+        any_frame = any_frame || later.any_frame;
+        counted = counted || later.counted;
+        velocity = velocity || later.velocity, acceleration = acceleration || later.acceleration;
+        std::move(later.tracks.begin(), later.tracks.end(), std::back_inserter(tracks));
+    }
+
     /// The channels some track carries.
     channels carried() const {
         channels c;
@@ -114,6 +126,10 @@ public:
     virtual void end_track() = 0;
     /// The rows made so far do not count: the input is read again.
     virtual void restart() {}
+    /// A row source of the same settings for a track whose rows are made
+    /// apart from the others' (on a thread of its own); none where a
+    /// track's rows depend on the tracks before it.
+    virtual std::unique_ptr<row_source> for_track_apart() const { return nullptr; }
     /// After the last track, what is to be said of them (reduce's summaries).
     virtual void report(std::ostream&, std::ostream&) const {}
 };

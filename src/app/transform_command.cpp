@@ -22,6 +22,7 @@
 #include "app/plan.hpp"
 #include "app/plots.hpp"
 #include "app/row_sources.hpp"
+#include "app/track_rows.hpp"
 #include "ground/held_warnings.hpp"
 #include "ground/thread_start.hpp"
 #include "io/bvh/bvh_read.hpp"
@@ -123,45 +124,29 @@ bool scan_json(const transform_plan& p, const input_source& src, document_facts&
 }
 
 /// Pass 2 over a streamed input whose tracks come one after another:
-/// each track's rows made as its keys arrive. With `known` (pass 1's facts)
-/// the keys are known to be good; without (one pass), each track is taken
-/// to carry the channels its first key carries, and the keys are checked
-/// as pass 1 checks them. Returns the facts seen, or nothing when a track
-/// comes back after another one began, or the reader declines the document.
+/// stream_keys, parsing ahead where it pays.
 std::optional<document_facts> stream_rows(const transform_plan& p, const input_source& src,
                                           const document_facts* known, table_output& rows, warnings& warn) {
-    std::size_t keys = 0, rows_put = 0;
-    const row_sink row(rows, rows_put);
+    row_counts counts;
     // Parsing ahead on a thread of its own pays when keys outnumber rows
     // (motion capture at 120 Hz resampled to 24 fps, say). Otherwise the
     // formatting threads keep the cores busy, and it would only cost.
-    const pass_keys input = open_keys(p, src, warn, [&] { return rows_put < keys; });
-    key_reader* const reader = input.reader.get();
-    document_facts seen;
-    std::set<std::string> names;
-    std::string name;
-    raw_key raw;
-    while (reader->next(name, raw)) {
-        ++keys;
-        const key_settings& settings = reader->settings();
-        key k = make_key(raw, settings, warn);
-        const bool same_track = !seen.tracks.empty() && seen.tracks.back().name == name;
-        if (!known && same_track) check_next(seen.tracks.back().last, k, src.source());
-        if (!known && !same_track && !names.insert(name).second) return std::nullopt;
-        if (!known) p.rows->check_key(same_track ? seen.tracks.back().first : k, k, name, src.source());
-        if (!same_track) {
-            if (!seen.tracks.empty()) p.rows->end_track();
-            const channels carried = known ? known->tracks[seen.tracks.size()].carried : channels_of(k);
-            rows.begin_track(name, carried, p.rows->written(settings.interpolation));
-            p.rows->begin_track(name, settings.euler, settings.interpolation, carried, row);
-        }
-        p.rows->add(k);
-        seen.add(name, settings, std::move(k));
-    }
-    if (reader->declined()) return std::nullopt;
-    if (!seen.tracks.empty()) p.rows->end_track();
-    seen.named = reader->named();
-    return seen;
+    const pass_keys input = open_keys(p, src, warn, [&] { return counts.rows < counts.keys; });
+    return stream_keys(*input.reader, *p.rows, rows, counts, known, src.source(), warn);
+}
+
+/// One pass over a glTF input by rows_apart, where it takes it (a glTF file
+/// resampled into a glTF file) and it pays: a thread costs about what a
+/// few thousand keys do, and a quarter of a megabyte of buffers holds more.
+std::optional<document_facts> rows_by_track(const transform_plan& p, const input_source& src, table_output& rows,
+                                            warnings& warn) {
+    if (!is_gltf(p.in)) return std::nullopt;
+    const std::shared_ptr<gltf_source> loaded = loaded_gltf(p, src, warn);
+    const auto readers = [&] {
+        if (read_buffers(*loaded) < 256 * 1024) return std::vector<std::unique_ptr<key_reader>>{};
+        return make_gltf_track_readers(loaded, p.reading);
+    };
+    return rows_apart(readers, *p.rows, rows, src.source());
 }
 
 /// Every track's keys to the row source's check_track: an input read whole
@@ -229,7 +214,8 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
         }
         const auto table =
             open_table(p.out, p.target, out, p.rows->table(guess), writing_for(p, src, guess, attempt), output_warn);
-        const std::optional<document_facts> seen = stream_rows(p, src, nullptr, *table, attempt);
+        std::optional<document_facts> seen = rows_by_track(p, src, *table, attempt);
+        if (!seen) seen = stream_rows(p, src, nullptr, *table, attempt);
         if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
         p.rows->check(*seen, attempt);
         for (const auto& t : seen->tracks)

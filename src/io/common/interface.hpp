@@ -139,6 +139,11 @@ public:
     /// Where resample's slerp and squad frames may go before their
     /// rotations are worked out (keyrot/resample.hpp), or none: through frame().
     virtual arc_frame_sink* arc_frames() { return nullptr; }
+    /// Where one track's rows may be made apart from the others' (on a
+    /// thread of their own): an output of that track alone, whose finish()
+    /// puts it after the tracks put before it; none where this output takes
+    /// its tracks in order only.
+    virtual std::unique_ptr<table_output> track_apart() { return nullptr; }
     /// Closes the document and puts out what is left (then commits the file).
     virtual void finish() = 0;
 };

@@ -179,8 +179,9 @@ gltf_file load(std::istream& in, format f, const read_options& ro) {
 /// when its track's turn comes, so that one track's keys are held at a time.
 class gltf_keys final : public key_reader {
 public:
-    gltf_keys(std::shared_ptr<gltf_source> loaded, const read_options& ro, warnings& warn)
-        : loaded_(std::move(loaded)), file_(loaded_->file), tracks_(tracks_of(file_, ro, warn)), flags_(ro.settings) {}
+    /// The keys of `tracks`, tracks of the file.
+    gltf_keys(std::shared_ptr<gltf_source> loaded, const read_options& ro, std::vector<node_track> tracks)
+        : loaded_(std::move(loaded)), file_(loaded_->file), tracks_(std::move(tracks)), flags_(ro.settings) {}
 
     bool next(std::string& track, raw_key& k) override {
         while (key_ == times_.size()) {
@@ -346,18 +347,34 @@ private:
 }  // namespace
 
 std::unique_ptr<key_reader> make_gltf_reader(std::istream& in, format f, const read_options& ro, warnings& warn) {
-    return std::make_unique<gltf_keys>(std::make_shared<gltf_source>(gltf_source{load(in, f, ro), {}}), ro, warn);
+    return make_gltf_reader(std::make_shared<gltf_source>(gltf_source{load(in, f, ro), {}}), ro, warn);
 }
 
 std::unique_ptr<key_reader> make_gltf_reader(std::shared_ptr<gltf_source> loaded, const read_options& ro,
                                              warnings& warn) {
-    return std::make_unique<gltf_keys>(std::move(loaded), ro, warn);
+    std::vector<node_track> tracks = tracks_of(loaded->file, ro, warn);  // (what it warns of, said again)
+    return std::make_unique<gltf_keys>(std::move(loaded), ro, std::move(tracks));
+}
+
+std::size_t read_buffers(gltf_source& loaded) {
+    std::size_t bytes = 0;
+    for (std::size_t i = 0; i < top_array(loaded.file, "buffers").size(); ++i) bytes += buffer_bytes(loaded.file, i).size();
+    return bytes;
+}
+
+std::vector<std::unique_ptr<key_reader>> make_gltf_track_readers(const std::shared_ptr<gltf_source>& loaded,
+                                                                  const read_options& ro) {
+    read_buffers(*loaded);  // (a reader reads a buffer on first use, which two at once must not)
+    std::vector<std::unique_ptr<key_reader>> readers;
+    for (std::size_t i = 0; i < loaded->tracks.size(); ++i)
+        readers.push_back(std::make_unique<gltf_keys>(loaded, ro, std::vector{loaded->tracks[i]}));
+    return readers;
 }
 
 std::shared_ptr<gltf_source> read_gltf_source(std::istream& in, format f, const read_options& ro, warnings& warn) {
     auto source = std::make_shared<gltf_source>();
     source->file = load(in, f, ro);
-    for (const node_track& n : tracks_of(source->file, ro, warn)) source->origins.push_back(n.origin);
+    source->tracks = tracks_of(source->file, ro, warn);
     return source;
 }
 

@@ -13,10 +13,10 @@
 namespace keyrot {
 
 /// A glTF input, kept for a glTF output that rewrites it: the file, and
-/// the origin of each of the document's tracks, in their order.
+/// the document's tracks (their names and origins), in their order.
 struct gltf_source {
     gltf_file file;
-    std::vector<gltf_track_origin> origins;
+    std::vector<node_track> tracks;
 };
 
 /// The keys of a glTF file (`f`: gltf or glb; relative buffer URIs from the
@@ -39,5 +39,16 @@ std::shared_ptr<gltf_source> read_gltf_source(std::istream& in, format f, const 
 /// once. The reader shares `loaded` (its buffers are decoded on first use).
 std::unique_ptr<key_reader> make_gltf_reader(std::shared_ptr<gltf_source> loaded, const read_options& ro,
                                              warnings& warn);
+
+/// The bytes of the file's buffers, which its keys are read from, each
+/// read now if it was not yet. Throws input_error for one that cannot be.
+std::size_t read_buffers(gltf_source& loaded);
+
+/// A reader of each track's keys alone, as make_gltf_reader gives them, in
+/// their order: tracks so read apart may be read on threads of their own at
+/// once. What the file's tracks warn of was said when it was loaded. Every
+/// buffer of the file is read first (input_error for one that cannot be).
+std::vector<std::unique_ptr<key_reader>> make_gltf_track_readers(const std::shared_ptr<gltf_source>& loaded,
+                                                                  const read_options& ro);
 
 }  // namespace keyrot

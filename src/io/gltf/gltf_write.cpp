@@ -220,7 +220,7 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
     // Replaced channels: (animation, channel) -> (track, path).
     std::map<std::pair<std::size_t, std::size_t>, std::pair<std::size_t, gltf_path>> replaced;
     for (std::size_t i = 0; i < tracks.size(); ++i) {
-        const gltf_track_origin& o = source.origins[i];
+        const gltf_track_origin& o = source.tracks[i].origin;
         if (o.rotation) replaced[{o.animation, *o.rotation}] = {i, gltf_path::rotation};
         if (o.translation) replaced[{o.animation, *o.translation}] = {i, gltf_path::translation};
         if (o.scale) replaced[{o.animation, *o.scale}] = {i, gltf_path::scale};
@@ -319,7 +319,7 @@ void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_
     for (const auto& [at, who] : replaced) {
         const auto [a, c] = at;
         const auto [i, path] = who;
-        const bool collapse = source.origins[i].rotation.has_value();
+        const bool collapse = source.tracks[i].origin.rotation.has_value();
         const std::size_t sampler = add_sampler(b, json, a, tracks[i], path, shared, collapse, short_rotations);
         json["animations"][a]["channels"][c]["sampler"] = sampler;
     }
@@ -339,14 +339,9 @@ void move_image_uris(gltf_json& json, const std::string& from_directory, const s
     });
 }
 
-/// A glTF input's tracks gathered, and written at finish() as that file
-/// with the samplers of the channels keyrot read replaced.
-class rewritten_table final : public table_output {
+/// Tracks' rows gathered as a glTF file stores them.
+class gathered_rows : public table_output {
 public:
-    rewritten_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
-                    bool short_rotations, std::shared_ptr<gltf_source> source, warnings& warn)
-        : f_(f), target_(target), commit_(commit), out_(out), short_rotations_(short_rotations),
-          source_(std::move(source)), warn_(warn) {}
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
         tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
         if (tracks_.size() < 2) return;
@@ -381,6 +376,34 @@ public:
                     for (std::size_t j = 0; j < w.width; ++j) w.tangents.push_back(j < tangent->size() ? (*tangent)[j] : 0);
         }
     }
+
+protected:
+    std::vector<gltf_track> tracks_;
+};
+
+/// A track's rows gathered apart from the others' (track_apart), put
+/// after the ones before it in `tracks` at finish().
+class gathered_apart final : public gathered_rows {
+public:
+    explicit gathered_apart(std::vector<gltf_track>& tracks) : tracks_put_(tracks) {}
+    void finish() override {
+        for (gltf_track& t : tracks_) tracks_put_.push_back(std::move(t));
+        tracks_.clear();
+    }
+
+private:
+    std::vector<gltf_track>& tracks_put_;
+};
+
+/// A glTF input's tracks gathered, and written at finish() as that file
+/// with the samplers of the channels keyrot read replaced.
+class rewritten_table final : public gathered_rows {
+public:
+    rewritten_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
+                    bool short_rotations, std::shared_ptr<gltf_source> source, warnings& warn)
+        : f_(f), target_(target), commit_(commit), out_(out), short_rotations_(short_rotations),
+          source_(std::move(source)), warn_(warn) {}
+    std::unique_ptr<table_output> track_apart() override { return std::make_unique<gathered_apart>(tracks_); }
     void finish() override {
         gltf_json json = source_->file.json;
         buffer_builder b(json, warn_.source());
@@ -406,7 +429,6 @@ private:
     bool short_rotations_;
     std::shared_ptr<gltf_source> source_;
     warnings& warn_;
-    std::vector<gltf_track> tracks_;
 };
 
 }  // namespace
