@@ -87,43 +87,80 @@ void compact(gltf_json& j, const char* name, const std::vector<bool>& keep, Refs
         j[name] = std::move(array);
 }
 
-/// Times as 32-bit floats, still strictly increasing.
-std::vector<float> time_values(const std::vector<double>& times, const std::string& where) {
-    std::vector<float> out;
-    out.reserve(times.size());
-    for (const double t : times) {
-        out.push_back(single(t, where, "time"));
-        if (out.size() > 1 && !(out.back() > out[out.size() - 2]))
-            throw input_error(where, fmt::format("times {} s and {} s are one 32-bit float, as glTF stores them: "
-                                                 "expected keys further apart (a lower --fps)",
-                                                 times[out.size() - 2], t));
-    }
-    return out;
-}
-
 /// The channels of a node keyrot writes, by their glTF target path.
 enum class gltf_path { rotation, translation, scale, weights };
 
-const char* path_name(gltf_path p) {
-    switch (p) {
-        case gltf_path::rotation: return "rotation";
-        case gltf_path::translation: return "translation";
-        case gltf_path::scale: return "scale";
-        case gltf_path::weights: break;
-    }
-    return "weights";
-}
+/// A quaternion's components in glTF's order, and a vector's.
+std::array<double, 4> xyzw(const quat& q) { return {q.x, q.y, q.z, q.w}; }
+std::array<double, 3> xyz(const vec3& v) { return {v.x, v.y, v.z}; }
 
-/// Track `t`'s values of channel `path` (not the rotation), and how they are interpolated.
-std::pair<const gltf_vectors*, method> vectors_of(const gltf_track& t, gltf_path path) {
-    switch (path) {
-        case gltf_path::translation: return {&t.translation, t.how.translation};
-        case gltf_path::scale: return {&t.scale, t.how.scale};
-        case gltf_path::weights: return {&t.weights, t.how.weights};
-        case gltf_path::rotation: break;
+/// A channel of a track as the file stores it, made row by row (on the
+/// thread that makes the rows): its key times and values as 32-bit floats,
+/// or a short rotation's normalised 16-bit integers. What cannot be stored
+/// (a value beyond a float, two times one float) is kept, to be said when
+/// the channel's sampler is added, in the order of the file's channels: its
+/// times' first, then its values'.
+struct stored_channel {
+    explicit stored_channel(std::size_t values_a_key = 0) : width(values_a_key) {}
+    std::size_t width;  // values a key: 4 for a rotation, 3, or a weight per morph target
+    std::vector<float> times, values;  // per key: width values; CUBICSPLINE: in-tangent, value, out-tangent
+    std::string shorts;                // a short rotation's values
+    double last_time = 0;              // the last key's, as the row gave it
+    std::exception_ptr bad_time, bad_value;
+
+    /// A key at `time`, whose values `put` puts (`where` names the track in a message).
+    template <class Where, class Put>
+    void add(double time, const Where& where, const Put& put) {
+        if (bad_time) return;
+        try {
+            const float stored = single_at(time, where, "time");
+            if (!times.empty() && !(stored > times.back()))
+                throw input_error(where(), fmt::format("times {} s and {} s are one 32-bit float, as glTF stores "
+                                                       "them: expected keys further apart (a lower --fps)",
+                                                       last_time, time));
+            times.push_back(stored), last_time = time;
+        } catch (const input_error&) {
+            bad_time = std::current_exception();
+            return;
+        }
+        if (bad_value) return;
+        try {
+            put();
+        } catch (const input_error&) {
+            bad_value = std::current_exception();
+        }
     }
-    return {nullptr, t.how.rotation};
-}
+    void put(std::span<const double> v, const auto& where, const char* what) {
+        for (const double x : v) values.push_back(single_at(x, where, what));
+    }
+};
+
+/// One track's rows as a glTF file stores them.
+struct stored_track {
+    std::string name;
+    track_interpolation how;  // slerp is written LINEAR, step STEP, cubicspline CUBICSPLINE
+    std::size_t rows = 0;
+    stored_channel rotation{4}, translation{3}, scale{3}, weights;
+
+    const stored_channel& channel(gltf_path path) const {
+        switch (path) {
+            case gltf_path::translation: return translation;
+            case gltf_path::scale: return scale;
+            case gltf_path::weights: return weights;
+            case gltf_path::rotation: break;
+        }
+        return rotation;
+    }
+    method how_of(gltf_path path) const {
+        switch (path) {
+            case gltf_path::translation: return how.translation;
+            case gltf_path::scale: return how.scale;
+            case gltf_path::weights: return how.weights;
+            case gltf_path::rotation: break;
+        }
+        return how.rotation;
+    }
+};
 
 /// Whether every key of `values` (`width` floats each) is the first, bit for bit.
 bool constant(const std::vector<float>& values, std::size_t width) {
@@ -151,45 +188,30 @@ struct shared_parts {
 /// and keyrot reads a key that is alone at every key of its track. With
 /// `short_rotations`, a LINEAR or STEP rotation is stored as normalised
 /// 16-bit integers.
-std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const gltf_track& t, gltf_path path,
+std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const stored_track& t, gltf_path path,
                         shared_parts& shared, bool collapse, bool short_rotations) {
-    const auto [vectors, how] = vectors_of(t, path);
-    const std::vector<double>& times = vectors ? vectors->times : t.times;
-    const std::string where = t.name.empty() ? b.source : keyrot::where(b.source, fmt::format("track '{}'", t.name));
-    std::vector<float> key_times = time_values(times, where), values;
-    const auto put = [&](std::initializer_list<double> v) {
-        for (const double x : v) values.push_back(single(x, where, path_name(path)));
-    };
-    const auto put_span = [&](const std::vector<double>& v, std::size_t row, std::size_t w) {
-        for (std::size_t j = 0; j < w; ++j) put({v[row * w + j]});
-    };
-    const bool spline = how == method::cubicspline;
+    const stored_channel& c = t.channel(path);
+    for (const std::exception_ptr& bad : {c.bad_time, c.bad_value})
+        if (bad) std::rethrow_exception(bad);
+    const method how = t.how_of(path);
+    const bool vectors = path != gltf_path::rotation, spline = how == method::cubicspline;
     const bool shorts = short_rotations && !vectors && !spline;  // (tangents are no unit quaternions)
-    std::string short_values;
-    for (std::size_t i = 0; i < times.size(); ++i) {
-        if (vectors) {
-            const std::size_t w = vectors->width;
-            if (spline) put_span(vectors->tangents, 2 * i, w);
-            put_span(vectors->values, i, w);
-            if (spline) put_span(vectors->tangents, 2 * i + 1, w);
-        } else if (spline) {
-            const spline_key& s = t.splines[i];
-            for (const quat& q : {s.rotation_in, s.rotation, s.rotation_out}) put({q.x, q.y, q.z, q.w});
-        } else {
-            const quat& q = t.rotations[i];
-            if (!shorts) put({q.x, q.y, q.z, q.w});
-            else append_normalized_shorts(short_values, std::array{q.x, q.y, q.z, q.w});
-        }
+    const bool one_key =
+        collapse && vectors && !spline && c.times.size() == t.rows && constant(c.values, c.width);
+    std::vector<float> first_time, first_value;
+    if (one_key) {
+        first_time = {c.times.front()};
+        first_value.assign(c.values.begin(), c.values.begin() + static_cast<std::ptrdiff_t>(c.width));
     }
-    if (collapse && vectors && !spline && vectors->times == t.times && constant(values, vectors->width))
-        key_times.resize(1), values.resize(vectors->width);
+    const std::vector<float>& key_times = one_key ? first_time : c.times;
+    const std::vector<float>& values = one_key ? first_value : c.values;
     auto input = shared.inputs.find(key_times);
     if (input == shared.inputs.end()) input = shared.inputs.emplace(key_times, b.accessor(key_times, 1, true)).first;
     // (weights are SCALAR, a weight per morph target in each key's element)
     const std::size_t width = !vectors ? 4 : path == gltf_path::weights ? 1 : 3;
     std::size_t output;
     if (shorts) {
-        output = b.accessor(short_values, times.size(), width, component::normalized_short);
+        output = b.accessor(c.shorts, c.times.size(), width, component::normalized_short);
     } else if (key_times.size() == 1) {
         auto single = shared.single_values.find({width, values});
         if (single == shared.single_values.end())
@@ -207,7 +229,7 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const
 }
 
 /// The input file with the samplers of the channels keyrot read replaced.
-void rewrite(const std::vector<gltf_track>& tracks, gltf_source& source, buffer_builder& b, gltf_json& json,
+void rewrite(const std::vector<stored_track>& tracks, gltf_source& source, buffer_builder& b, gltf_json& json,
              bool short_rotations, warnings& warn) {
     gltf_file& file = source.file;
     for (const auto& name : json.value("extensionsUsed", gltf_json::array()))
@@ -339,60 +361,85 @@ void move_image_uris(gltf_json& json, const std::string& from_directory, const s
     });
 }
 
-/// Tracks' rows gathered as a glTF file stores them.
+/// Tracks' rows gathered as a glTF file stores them, row by row (with
+/// `short_rotations`, a LINEAR or STEP rotation as normalised 16-bit
+/// integers); `source` names the rows in messages.
 class gathered_rows : public table_output {
 public:
+    gathered_rows(bool short_rotations, std::string source)
+        : short_rotations_(short_rotations), source_(std::move(source)) {}
     void begin_track(const std::string& name, channels, const track_interpolation& written) override {
-        tracks_.push_back({name, written, {}, {}, {}, {}, {}, {}});
+        stored_track& track = tracks_.emplace_back();
+        track.name = name, track.how = written;
         if (tracks_.size() < 2) return;
         // A rig's tracks are as long as each other: room for as many rows as the track before had.
-        gltf_track &t = tracks_.back(), &before = tracks_[tracks_.size() - 2];
-        t.times.reserve(before.times.size()), t.rotations.reserve(before.rotations.size());
-        for (const auto& [v, b] : {std::pair(&t.translation, &before.translation), std::pair(&t.scale, &before.scale)})
-            v->times.reserve(b->times.size()), v->values.reserve(b->values.size());
+        stored_track &t = tracks_.back(), &before = tracks_[tracks_.size() - 2];
+        for (const auto& [c, b] : {std::pair(&t.rotation, &before.rotation),
+                                   std::pair(&t.translation, &before.translation), std::pair(&t.scale, &before.scale)})
+            c->times.reserve(b->times.size()), c->values.reserve(b->values.size()), c->shorts.reserve(b->shorts.size());
     }
     void row(const table_row& s) override {
-        gltf_track& t = tracks_.back();
+        stored_track& t = tracks_.back();
+        ++t.rows;
+        const auto where = [&] {
+            return t.name.empty() ? source_ : keyrot::where(source_, fmt::format("track '{}'", t.name));
+        };
         static const full_spline_key none{};  // the tangents of a row that is no CUBICSPLINE key: none
         const full_spline_key& spline = s.spline ? *s.spline : none;
-        t.times.push_back(s.time);
-        t.rotations.push_back(s.rotation);
-        if (t.how.rotation == method::cubicspline) t.splines.push_back(spline);
-        const auto put = [&](gltf_vectors& v, const std::optional<vec3>& value, method how, vec3 in, vec3 out) {
+        t.rotation.add(s.time, where, [&] {
+            if (t.how.rotation == method::cubicspline)
+                for (const quat& q : {spline.rotation_in, spline.rotation, spline.rotation_out})
+                    t.rotation.put(xyzw(q), where, "rotation");
+            else if (short_rotations_)
+                append_normalized_shorts(t.rotation.shorts, xyzw(s.rotation));
+            else
+                t.rotation.put(xyzw(s.rotation), where, "rotation");
+        });
+        const auto put = [&](stored_channel& c, const std::optional<vec3>& value, method how, const char* what,
+                             const vec3& in, const vec3& out) {
             if (!value) return;
-            v.times.push_back(s.time);
-            v.values.insert(v.values.end(), {value->x, value->y, value->z});
-            if (how == method::cubicspline) v.tangents.insert(v.tangents.end(), {in.x, in.y, in.z, out.x, out.y, out.z});
+            c.add(s.time, where, [&] {
+                if (how == method::cubicspline) c.put(xyz(in), where, what);
+                c.put(xyz(*value), where, what);
+                if (how == method::cubicspline) c.put(xyz(out), where, what);
+            });
         };
-        put(t.translation, s.translation, t.how.translation, spline.translation_in, spline.translation_out);
-        put(t.scale, s.scale, t.how.scale, spline.scale_in, spline.scale_out);
+        put(t.translation, s.translation, t.how.translation, "translation", spline.translation_in,
+            spline.translation_out);
+        put(t.scale, s.scale, t.how.scale, "scale", spline.scale_in, spline.scale_out);
         if (!s.weights.empty()) {
-            gltf_vectors& w = t.weights;
+            stored_channel& w = t.weights;
             w.width = s.weights.size();
-            w.times.push_back(s.time);
-            w.values.insert(w.values.end(), s.weights.begin(), s.weights.end());
-            if (t.how.weights == method::cubicspline)
-                for (const morph_weights* tangent : {&spline.weights_in, &spline.weights_out})
-                    for (std::size_t j = 0; j < w.width; ++j) w.tangents.push_back(j < tangent->size() ? (*tangent)[j] : 0);
+            const auto tangent = [&](const morph_weights& given) {
+                for (std::size_t j = 0; j < w.width; ++j) w.put({{j < given.size() ? given[j] : 0}}, where, "weights");
+            };
+            w.add(s.time, where, [&] {
+                if (t.how.weights == method::cubicspline) tangent(spline.weights_in);
+                w.put(s.weights, where, "weights");
+                if (t.how.weights == method::cubicspline) tangent(spline.weights_out);
+            });
         }
     }
 
 protected:
-    std::vector<gltf_track> tracks_;
+    bool short_rotations_;
+    std::string source_;
+    std::vector<stored_track> tracks_;
 };
 
 /// A track's rows gathered apart from the others' (track_apart), put
 /// after the ones before it in `tracks` at finish().
 class gathered_apart final : public gathered_rows {
 public:
-    explicit gathered_apart(std::vector<gltf_track>& tracks) : tracks_put_(tracks) {}
+    gathered_apart(bool short_rotations, std::string source, std::vector<stored_track>& tracks)
+        : gathered_rows(short_rotations, std::move(source)), tracks_put_(tracks) {}
     void finish() override {
-        for (gltf_track& t : tracks_) tracks_put_.push_back(std::move(t));
+        for (stored_track& t : tracks_) tracks_put_.push_back(std::move(t));
         tracks_.clear();
     }
 
 private:
-    std::vector<gltf_track>& tracks_put_;
+    std::vector<stored_track>& tracks_put_;
 };
 
 /// A glTF input's tracks gathered, and written at finish() as that file
@@ -400,22 +447,24 @@ private:
 class rewritten_table final : public gathered_rows {
 public:
     rewritten_table(format f, const std::optional<std::string>& target, std::ostream& out, commit_mode commit,
-                    bool short_rotations, std::shared_ptr<gltf_source> source, warnings& warn)
-        : f_(f), target_(target), commit_(commit), out_(out), short_rotations_(short_rotations),
-          source_(std::move(source)), warn_(warn) {}
-    std::unique_ptr<table_output> track_apart() override { return std::make_unique<gathered_apart>(tracks_); }
+                    bool short_rotations, std::shared_ptr<gltf_source> input, warnings& warn)
+        : gathered_rows(short_rotations, warn.source()), f_(f), target_(target), commit_(commit), out_(out),
+          input_(std::move(input)), warn_(warn) {}
+    std::unique_ptr<table_output> track_apart() override {
+        return std::make_unique<gathered_apart>(short_rotations_, source_, tracks_);
+    }
     void finish() override {
-        gltf_json json = source_->file.json;
+        gltf_json json = input_->file.json;
         buffer_builder b(json, warn_.source());
         gltf_json buffer = gltf_json::object();
-        if (const auto& buffers = top_array(source_->file, "buffers"); !buffers.empty() && buffers[0].is_object())
+        if (const auto& buffers = top_array(input_->file, "buffers"); !buffers.empty() && buffers[0].is_object())
             buffer = buffers[0];
         try {
-            rewrite(tracks_, *source_, b, json, short_rotations_, warn_);
+            rewrite(tracks_, *input_, b, json, short_rotations_, warn_);
         } catch (const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
-            throw input_error(source_->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
+            throw input_error(input_->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
         }
-        move_image_uris(json, source_->file.directory, target_);
+        move_image_uris(json, input_->file.directory, target_);
         buffer.erase("uri");
         json["buffers"] = gltf_json::array({buffer});
         put_file(json, b.bin, f_, target_, commit_, out_);
@@ -426,8 +475,7 @@ private:
     std::optional<std::string> target_;
     commit_mode commit_;
     std::ostream& out_;
-    bool short_rotations_;
-    std::shared_ptr<gltf_source> source_;
+    std::shared_ptr<gltf_source> input_;
     warnings& warn_;
 };
 

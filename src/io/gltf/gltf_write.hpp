@@ -14,24 +14,6 @@
 
 namespace keyrot {
 
-/// A track's translations, scales or morph weights as a glTF file stores them.
-struct gltf_vectors {
-    std::size_t width = 3;      ///< values per row: 3, or a weight per morph target
-    std::vector<double> times;  ///< the rows that have one
-    std::vector<double> values;  ///< `width` per row
-    std::vector<double> tangents;  ///< CUBICSPLINE: per row, the in-tangent then the out-tangent, `width` each
-};
-
-/// One track's rows as a glTF file stores them.
-struct gltf_track {
-    std::string name;
-    track_interpolation how;  ///< slerp is written LINEAR, step STEP, cubicspline CUBICSPLINE
-    std::vector<double> times;
-    std::vector<quat> rotations;
-    std::vector<spline_key> splines;  ///< CUBICSPLINE rotations: one per row
-    gltf_vectors translation, scale, weights;
-};
-
 /// A node of a new file's skeleton (a BVH hierarchy), and the track that
 /// animates it, if any.
 struct gltf_node {
