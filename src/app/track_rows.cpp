@@ -79,6 +79,7 @@ std::optional<document_facts> rows_apart(const std::function<std::vector<std::un
         }
     };
     std::vector<std::thread> threads;
+    threads.reserve(cores);  // (a thread started is never dropped for want of room)
     for (unsigned t = 1; t < std::min<std::size_t>(cores, tracks.size()); ++t) {
         std::thread thread;
         if (!try_start_thread(thread, work)) break;  // fewer threads

@@ -111,11 +111,11 @@ protected:
     std::streamsize showmanyc() override { return (spool_ ? spool_->size : end_) - offset_; }
 
 private:
-    /// All of `n` bytes at the file's offset, where there are megabytes of
-    /// them: the second half on a thread of its own, so that the kernel
-    /// copies them, and gives the memory they go to, on two cores at once.
-    /// Returns how many were read (0 for fewer bytes, or where the system
-    /// refuses the thread); the offset moves past them.
+    /// All of `n` bytes at the file's offset, where they are 16 MiB or more:
+    /// the second half on a thread of its own, so that the kernel copies
+    /// them, and gives the memory they go to, on two cores at once. Returns
+    /// how many were read (0 for fewer bytes, or where the system refuses
+    /// the thread); the offset moves past them.
     std::streamsize read_halves(char* into, std::streamsize n) {
         constexpr std::streamsize at_least = std::streamsize{16} << 20;
         if (n < at_least) return 0;

@@ -358,7 +358,8 @@ std::unique_ptr<key_reader> make_gltf_reader(std::shared_ptr<gltf_source> loaded
 
 std::size_t read_buffers(gltf_source& loaded) {
     std::size_t bytes = 0;
-    for (std::size_t i = 0; i < top_array(loaded.file, "buffers").size(); ++i) bytes += buffer_bytes(loaded.file, i).size();
+    for (std::size_t i = 0; i < top_array(loaded.file, "buffers").size(); ++i)
+        bytes += buffer_bytes(loaded.file, i).size();
     return bytes;
 }
 
