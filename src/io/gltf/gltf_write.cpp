@@ -11,6 +11,7 @@
 
 #include "io/common/output.hpp"
 #include "io/gltf/gltf_buffer.hpp"
+#include "io/gltf/gltf_rows.hpp"
 
 namespace keyrot {
 namespace {
@@ -86,81 +87,6 @@ void compact(gltf_json& j, const char* name, const std::vector<bool>& keep, Refs
     else
         j[name] = std::move(array);
 }
-
-/// The channels of a node keyrot writes, by their glTF target path.
-enum class gltf_path { rotation, translation, scale, weights };
-
-/// A quaternion's components in glTF's order, and a vector's.
-std::array<double, 4> xyzw(const quat& q) { return {q.x, q.y, q.z, q.w}; }
-std::array<double, 3> xyz(const vec3& v) { return {v.x, v.y, v.z}; }
-
-/// A channel of a track as the file stores it, made row by row (on the
-/// thread that makes the rows): its key times and values as 32-bit floats,
-/// or a short rotation's normalised 16-bit integers. What cannot be stored
-/// (a value beyond a float, two times one float) is kept, to be said when
-/// the channel's sampler is added, in the order of the file's channels: its
-/// times' first, then its values'.
-struct stored_channel {
-    explicit stored_channel(std::size_t values_a_key = 0) : width(values_a_key) {}
-    std::size_t width;  // values a key: 4 for a rotation, 3, or a weight per morph target
-    std::vector<float> times, values;  // per key: width values; CUBICSPLINE: in-tangent, value, out-tangent
-    std::string shorts;                // a short rotation's values
-    double last_time = 0;              // the last key's, as the row gave it
-    std::exception_ptr bad_time, bad_value;
-
-    /// A key at `time`, whose values `put` puts (`where` names the track in a message).
-    template <class Where, class Put>
-    void add(double time, const Where& where, const Put& put) {
-        if (bad_time) return;
-        try {
-            const float stored = single_at(time, where, "time");
-            if (!times.empty() && !(stored > times.back()))
-                throw input_error(where(), fmt::format("times {} s and {} s are one 32-bit float, as glTF stores "
-                                                       "them: expected keys further apart (a lower --fps)",
-                                                       last_time, time));
-            times.push_back(stored), last_time = time;
-        } catch (const input_error&) {
-            bad_time = std::current_exception();
-            return;
-        }
-        if (bad_value) return;
-        try {
-            put();
-        } catch (const input_error&) {
-            bad_value = std::current_exception();
-        }
-    }
-    void put(std::span<const double> v, const auto& where, const char* what) {
-        for (const double x : v) values.push_back(single_at(x, where, what));
-    }
-};
-
-/// One track's rows as a glTF file stores them.
-struct stored_track {
-    std::string name;
-    track_interpolation how;  // slerp is written LINEAR, step STEP, cubicspline CUBICSPLINE
-    std::size_t rows = 0;
-    stored_channel rotation{4}, translation{3}, scale{3}, weights;
-
-    const stored_channel& channel(gltf_path path) const {
-        switch (path) {
-            case gltf_path::translation: return translation;
-            case gltf_path::scale: return scale;
-            case gltf_path::weights: return weights;
-            case gltf_path::rotation: break;
-        }
-        return rotation;
-    }
-    method how_of(gltf_path path) const {
-        switch (path) {
-            case gltf_path::translation: return how.translation;
-            case gltf_path::scale: return how.scale;
-            case gltf_path::weights: return how.weights;
-            case gltf_path::rotation: break;
-        }
-        return how.rotation;
-    }
-};
 
 /// Whether every key of `values` (`width` floats each) is the first, bit for bit.
 bool constant(const std::vector<float>& values, std::size_t width) {
@@ -360,87 +286,6 @@ void move_image_uris(gltf_json& json, const std::string& from_directory, const s
         if (!moved.empty()) uri = moved.generic_string();
     });
 }
-
-/// Tracks' rows gathered as a glTF file stores them, row by row (with
-/// `short_rotations`, a LINEAR or STEP rotation as normalised 16-bit
-/// integers); `source` names the rows in messages.
-class gathered_rows : public table_output {
-public:
-    gathered_rows(bool short_rotations, std::string source)
-        : short_rotations_(short_rotations), source_(std::move(source)) {}
-    void begin_track(const std::string& name, channels, const track_interpolation& written) override {
-        stored_track& track = tracks_.emplace_back();
-        track.name = name, track.how = written;
-        if (tracks_.size() < 2) return;
-        // A rig's tracks are as long as each other: room for as many rows as the track before had.
-        stored_track &t = tracks_.back(), &before = tracks_[tracks_.size() - 2];
-        for (const auto& [c, b] : {std::pair(&t.rotation, &before.rotation),
-                                   std::pair(&t.translation, &before.translation), std::pair(&t.scale, &before.scale)})
-            c->times.reserve(b->times.size()), c->values.reserve(b->values.size()), c->shorts.reserve(b->shorts.size());
-    }
-    void row(const table_row& s) override {
-        stored_track& t = tracks_.back();
-        ++t.rows;
-        const auto where = [&] {
-            return t.name.empty() ? source_ : keyrot::where(source_, fmt::format("track '{}'", t.name));
-        };
-        static const full_spline_key none{};  // the tangents of a row that is no CUBICSPLINE key: none
-        const full_spline_key& spline = s.spline ? *s.spline : none;
-        t.rotation.add(s.time, where, [&] {
-            if (t.how.rotation == method::cubicspline)
-                for (const quat& q : {spline.rotation_in, spline.rotation, spline.rotation_out})
-                    t.rotation.put(xyzw(q), where, "rotation");
-            else if (short_rotations_)
-                append_normalized_shorts(t.rotation.shorts, xyzw(s.rotation));
-            else
-                t.rotation.put(xyzw(s.rotation), where, "rotation");
-        });
-        const auto put = [&](stored_channel& c, const std::optional<vec3>& value, method how, const char* what,
-                             const vec3& in, const vec3& out) {
-            if (!value) return;
-            c.add(s.time, where, [&] {
-                if (how == method::cubicspline) c.put(xyz(in), where, what);
-                c.put(xyz(*value), where, what);
-                if (how == method::cubicspline) c.put(xyz(out), where, what);
-            });
-        };
-        put(t.translation, s.translation, t.how.translation, "translation", spline.translation_in,
-            spline.translation_out);
-        put(t.scale, s.scale, t.how.scale, "scale", spline.scale_in, spline.scale_out);
-        if (!s.weights.empty()) {
-            stored_channel& w = t.weights;
-            w.width = s.weights.size();
-            const auto tangent = [&](const morph_weights& given) {
-                for (std::size_t j = 0; j < w.width; ++j) w.put({{j < given.size() ? given[j] : 0}}, where, "weights");
-            };
-            w.add(s.time, where, [&] {
-                if (t.how.weights == method::cubicspline) tangent(spline.weights_in);
-                w.put(s.weights, where, "weights");
-                if (t.how.weights == method::cubicspline) tangent(spline.weights_out);
-            });
-        }
-    }
-
-protected:
-    bool short_rotations_;
-    std::string source_;
-    std::vector<stored_track> tracks_;
-};
-
-/// A track's rows gathered apart from the others' (track_apart), put
-/// after the ones before it in `tracks` at finish().
-class gathered_apart final : public gathered_rows {
-public:
-    gathered_apart(bool short_rotations, std::string source, std::vector<stored_track>& tracks)
-        : gathered_rows(short_rotations, std::move(source)), tracks_put_(tracks) {}
-    void finish() override {
-        for (stored_track& t : tracks_) tracks_put_.push_back(std::move(t));
-        tracks_.clear();
-    }
-
-private:
-    std::vector<stored_track>& tracks_put_;
-};
 
 /// A glTF input's tracks gathered, and written at finish() as that file
 /// with the samplers of the channels keyrot read replaced.
