@@ -77,6 +77,12 @@ float single(double v, const std::string& where, const char* what) {
     return f;
 }
 
+std::string one_float_apart(double a, double b) {
+    return fmt::format("times {} s and {} s are one 32-bit float, as glTF stores them: expected keys further apart "
+                       "(a lower --fps)",
+                       a, b);
+}
+
 const char* interpolation_name(method m) {
     return m == method::step ? "STEP" : m == method::cubicspline ? "CUBICSPLINE" : "LINEAR";
 }

@@ -41,10 +41,22 @@ void append_normalized_shorts(std::string& out, std::span<const double, 4> q);
 /// `v` as a 32-bit float; an input_error at `where` ("walk.csv: track 'hip'") where it is too large for one.
 float single(double v, const std::string& where, const char* what);
 
+/// What is said of key times `a` and `b` that are one 32-bit float.
+std::string one_float_apart(double a, double b);
+
 /// As single(), with `where` called for the place only when there is an error to name it in.
 float single_at(double v, const auto& where, const char* what) {
     const auto f = static_cast<float>(v);
     return std::isfinite(f) ? f : single(v, where(), what);
+}
+
+/// A key time `time` as a 32-bit float (single_at), after `before`: the
+/// float of the key before it, given as `before_time`, or none for a first
+/// key. An input_error at where() where the two are one float.
+float time_after(double time, const float* before, double before_time, const auto& where) {
+    const float f = single_at(time, where, "time");
+    if (before && !(f > *before)) throw input_error(where(), one_float_apart(before_time, time));
+    return f;
 }
 
 /// A sampler's interpolation for method `m`: STEP, CUBICSPLINE, or LINEAR.

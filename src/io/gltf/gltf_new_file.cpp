@@ -59,11 +59,7 @@ public:
             const std::string& name = tracks_.back().name;
             return name.empty() ? b_.source : keyrot::where(b_.source, fmt::format("track '{}'", name));
         };
-        const float time = single_at(s.time, where, "time");
-        if (rotation_.count && !(time > rotation_.last))
-            throw input_error(where(), fmt::format("times {} s and {} s are one 32-bit float, as glTF stores them: "
-                                                   "expected keys further apart (a lower --fps)",
-                                                   previous_time_, s.time));
+        const float time = time_after(s.time, rotation_.count ? &rotation_.last : nullptr, previous_time_, where);
         previous_time_ = s.time;
         rotation_.add(time, {s.rotation.x, s.rotation.y, s.rotation.z, s.rotation.w}, where, "rotation");
         if (s.translation)

@@ -34,7 +34,7 @@ void gathered_rows::row(const table_row& s) {
     static const full_spline_key none{};  // the tangents of a row that is no CUBICSPLINE key: none
     const full_spline_key& spline = s.spline ? *s.spline : none;
     t.rotation.add(s.time, where, [&] {
-        if (t.how.rotation == method::cubicspline)
+        if (t.how.rotation == method::cubicspline)  // (floats: tangents are no unit quaternions)
             for (const quat& q : {spline.rotation_in, spline.rotation, spline.rotation_out})
                 t.rotation.put(xyzw(q), where, "rotation");
         else if (short_rotations_)

@@ -2,8 +2,6 @@
 // A rewritten glTF file's tracks, gathered row by row as the file stores
 // them (gltf_write.cpp's rewritten table), and a track gathered apart from
 // the others, on a thread of its own. Internal to io/gltf.
-#include <fmt/format.h>
-
 #include <exception>
 #include <span>
 #include <string>
@@ -36,12 +34,8 @@ struct stored_channel {
     void add(double time, const Where& where, const Put& put) {
         if (bad_time) return;
         try {
-            const float stored = single_at(time, where, "time");
-            if (!times.empty() && !(stored > times.back()))
-                throw input_error(where(), fmt::format("times {} s and {} s are one 32-bit float, as glTF stores "
-                                                       "them: expected keys further apart (a lower --fps)",
-                                                       last_time, time));
-            times.push_back(stored), last_time = time;
+            times.push_back(time_after(time, times.empty() ? nullptr : &times.back(), last_time, where));
+            last_time = time;
         } catch (const input_error&) {
             bad_time = std::current_exception();
             return;

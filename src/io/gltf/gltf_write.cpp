@@ -111,17 +111,16 @@ struct shared_parts {
 /// track), a translation, scale or weights channel on the rotation's times
 /// whose values never change (as 32-bit floats), LINEAR or STEP, is written
 /// as its first key alone: glTF holds a sampler's value beyond its keys,
-/// and keyrot reads a key that is alone at every key of its track. With
-/// `short_rotations`, a LINEAR or STEP rotation is stored as normalised
-/// 16-bit integers.
+/// and keyrot reads a key that is alone at every key of its track. A
+/// rotation stored as normalised 16-bit integers (gathered_rows) is written so.
 std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const stored_track& t, gltf_path path,
-                        shared_parts& shared, bool collapse, bool short_rotations) {
+                        shared_parts& shared, bool collapse) {
     const stored_channel& c = t.channel(path);
     for (const std::exception_ptr& bad : {c.bad_time, c.bad_value})
         if (bad) std::rethrow_exception(bad);
     const method how = t.how_of(path);
     const bool vectors = path != gltf_path::rotation, spline = how == method::cubicspline;
-    const bool shorts = short_rotations && !vectors && !spline;  // (tangents are no unit quaternions)
+    const bool shorts = !c.shorts.empty();
     const bool one_key =
         collapse && vectors && !spline && c.times.size() == t.rows && constant(c.values, c.width);
     std::vector<float> first_time, first_value;
@@ -156,7 +155,7 @@ std::size_t add_sampler(buffer_builder& b, gltf_json& json, std::size_t a, const
 
 /// The input file with the samplers of the channels keyrot read replaced.
 void rewrite(const std::vector<stored_track>& tracks, gltf_source& source, buffer_builder& b, gltf_json& json,
-             bool short_rotations, warnings& warn) {
+             warnings& warn) {
     gltf_file& file = source.file;
     for (const auto& name : json.value("extensionsUsed", gltf_json::array()))
         if (!name.is_string() ||
@@ -268,7 +267,7 @@ void rewrite(const std::vector<stored_track>& tracks, gltf_source& source, buffe
         const auto [a, c] = at;
         const auto [i, path] = who;
         const bool collapse = source.tracks[i].origin.rotation.has_value();
-        const std::size_t sampler = add_sampler(b, json, a, tracks[i], path, shared, collapse, short_rotations);
+        const std::size_t sampler = add_sampler(b, json, a, tracks[i], path, shared, collapse);
         json["animations"][a]["channels"][c]["sampler"] = sampler;
     }
     b.end_shared_view();
@@ -305,7 +304,7 @@ public:
         if (const auto& buffers = top_array(input_->file, "buffers"); !buffers.empty() && buffers[0].is_object())
             buffer = buffers[0];
         try {
-            rewrite(tracks_, *input_, b, json, short_rotations_, warn_);
+            rewrite(tracks_, *input_, b, json, warn_);
         } catch (const gltf_json::exception& e) {  // a part of the file keyrot did not read, of a type it did not expect
             throw input_error(input_->file.source, fmt::format("cannot rewrite this file: {}", e.what()));
         }
