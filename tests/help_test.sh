@@ -19,7 +19,7 @@ for command in resample convert slerp compare info reduce; do
     help=$(keyrot "$command" --help)
     examples=$(echo "$help" | sed -n '/^Examples:/,$p' | sed -n 's/^  \(keyrot .*\)/\1/p')
     (($(echo "$examples" | wc -l) >= 2)) || fail "$command --help: expected two or more examples"
-    echo "$help" | grep -q '(default' || fail "$command --help shows no defaults"
+    grep -q '(default' <<<"$help" || fail "$command --help shows no defaults"
     while read -r example; do  # (and without a warning)
         if out=$(bash -c "$example" 2>&1 >/dev/null) && ! grep -q warning <<<"$out"; then
             echo "ok   $example"
@@ -34,11 +34,15 @@ for command in resample convert slerp compare info reduce; do
         grep -qx -- "$flag" <<<"$taken" || fail "$command --help names $flag, which $command does not take"
     done
 done
+# (Help is read whole before it is searched: under pipefail, a grep -q that
+# stops at its first match can leave the writer a closed pipe, which fails
+# the pipe whatever it found.)
+resample_help=$(keyrot resample --help)
 for flag in --rep --method --path --quat-order; do  # (the text may be on the line under the flag)
-    keyrot resample --help | grep -A1 -E -- "^  $flag " | grep -q "(default: " || fail "resample --help: $flag has no default"
+    [[ $(grep -A1 -E -- "^  $flag " <<<"$resample_help") == *"(default: "* ]] || fail "resample --help: $flag has no default"
 done
 for group in Input Output Interpolation; do
-    keyrot resample --help | grep -qx "$group:" || fail "resample --help: no group $group"
+    grep -qx "$group:" <<<"$resample_help" || fail "resample --help: no group $group"
 done
 
 # `help formats`: each representation's CSV columns are the header keyrot writes,

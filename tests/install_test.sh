@@ -103,13 +103,16 @@ done
     fail "a static keyrot depends on '$depends'"
 [[ $(field "$dev" Depends) == libfmt-dev* ]] && ok "libkeyrot-dev Depends: $(field "$dev" Depends)" || fail "libkeyrot-dev Depends: $(field "$dev" Depends)"
 contents() { dpkg-deb -c "$1" | awk '{ print $6 }'; }
+# (each list read whole before it is searched: under pipefail a grep -q that
+# stops at its first match can fail the pipe of the writer it leaves)
+tool_files=$(contents "$tool") dev_files=$(contents "$dev")
 for file in ./usr/bin/keyrot ./usr/share/man/man1/keyrot.1.gz ./usr/share/bash-completion/completions/keyrot \
     ./usr/share/doc/keyrot/copyright ./usr/share/doc/keyrot/changelog.gz; do
-    contents "$tool" | grep -qx -- "$file" || fail "keyrot lacks $file"
+    grep -qx -- "$file" <<<"$tool_files" || fail "keyrot lacks $file"
 done
 for file in ./usr/include/keyrot/interpolate.hpp ./usr/lib/libkeyrot_core.a ./usr/lib/cmake/keyrot/keyrot-config.cmake \
     ./usr/share/doc/libkeyrot-dev/copyright ./usr/share/doc/libkeyrot-dev/changelog.gz; do
-    contents "$dev" | grep -qx -- "$file" || fail "libkeyrot-dev lacks $file"
+    grep -qx -- "$file" <<<"$dev_files" || fail "libkeyrot-dev lacks $file"
 done
 
 # What a Debian maintainer runs first: no lintian error or warning (the
@@ -131,7 +134,7 @@ if dpkg --root="$root" --force-not-root --force-bad-path --force-script-chrootle
         ok "dpkg installs keyrot into a scratch root" || fail "dpkg status: $(dpkg --root="$root" -s keyrot 2>&1)"
     "$root/usr/bin/keyrot" resample "$source_dir/data/homework.json" --fps 4 --rep quat >/dev/null &&
         ok "the packaged keyrot resamples" || fail "the packaged keyrot does not run"
-    MANWIDTH=80 man -l "$root/usr/share/man/man1/keyrot.1.gz" | grep -q "keyframe rotation interpolator" &&
+    [[ $(MANWIDTH=80 man -l "$root/usr/share/man/man1/keyrot.1.gz") == *"keyframe rotation interpolator"* ]] &&
         ok "the packaged man page reads" || fail "the packaged man page"
 else
     fail "dpkg -i into a scratch root: $(tail -3 "$scratch/dpkg.log")"
