@@ -36,13 +36,20 @@ struct document_facts {
     bool counted = false;    // some key is timed by its frame number alone
     bool velocity = false, acceleration = false;  // some key has them (a frame of resample --velocity)
 
+    /// Whether a key of track `name` goes on the last track.
+    bool on_last_track(const std::string& name) const { return !tracks.empty() && tracks.back().name == name; }
+
     /// Key `k` of track `track`, whose settings are `s`.
     void add(const std::string& track, const key_settings& s, key&& k) {
+        add(track, s, std::move(k), on_last_track(track));
+    }
+    /// The same, for a caller that has asked on_last_track(track) already
+    /// (`same_track`): a name compared once a key, not twice.
+    void add(const std::string& track, const key_settings& s, key&& k, bool same_track) {
         all_frames = all_frames && k.frame.has_value();
         any_time = any_time || k.has_time;
         frames = frames || (k.frame && k.has_time);
-        if (tracks.empty() || tracks.back().name != track)
-            tracks.push_back({track, k, k, {}, s.euler, s.key_fps, 0, s.interpolation});
+        if (!same_track) tracks.push_back({track, k, k, {}, s.euler, s.key_fps, 0, s.interpolation});
         any_frame = any_frame || k.frame.has_value();
         counted = counted || (k.frame && !k.has_time);
         if (k.rates) velocity = velocity || k.rates->velocity, acceleration = acceleration || k.rates->acceleration;

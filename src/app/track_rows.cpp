@@ -24,7 +24,7 @@ std::optional<document_facts> stream_keys(key_reader& reader, row_source& source
         ++counts.keys;
         const key_settings& settings = reader.settings();
         key k = make_key(raw, settings, warn);
-        const bool same_track = !seen.tracks.empty() && seen.tracks.back().name == name;
+        const bool same_track = seen.on_last_track(name);
         if (!known && same_track) check_next(seen.tracks.back().last, k, source_name);
         if (!known && !same_track && !names.insert(name).second) return std::nullopt;
         if (!known) source.check_key(same_track ? seen.tracks.back().first : k, k, name, source_name);
@@ -35,7 +35,7 @@ std::optional<document_facts> stream_keys(key_reader& reader, row_source& source
             source.begin_track(name, settings.euler, settings.interpolation, carried, row);
         }
         source.add(k);
-        seen.add(name, settings, std::move(k));
+        seen.add(name, settings, std::move(k), same_track);
     }
     if (reader.declined()) return std::nullopt;
     if (!seen.tracks.empty()) source.end_track();

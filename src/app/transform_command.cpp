@@ -95,13 +95,14 @@ document_facts scan(const transform_plan& p, const input_source& src, warnings& 
     read_whole = false;
     while (reader->next(name, raw)) {
         key k = make_key(raw, reader->settings(), warn);
-        if (!d.tracks.empty() && d.tracks.back().name == name) {
+        const bool same_track = d.on_last_track(name);
+        if (same_track) {
             check_next(d.tracks.back().last, k, src.source());
         } else if (!seen.insert(name).second) {
             read_whole = true;
             return d;
         }
-        d.add(name, reader->settings(), std::move(k));
+        d.add(name, reader->settings(), std::move(k), same_track);
     }
     read_whole = reader->declined();
     if (read_whole) return d;

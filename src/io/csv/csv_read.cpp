@@ -318,7 +318,7 @@ private:
         for (const std::size_t w : cols_.weights) k.weights.push_back(cell[w]);
         if (const auto& v = cols_.velocity) k.rates.velocity = vec3{cell[(*v)[0]], cell[(*v)[1]], cell[(*v)[2]]};
         if (const auto& a = cols_.acceleration) k.rates.acceleration = vec3{cell[(*a)[0]], cell[(*a)[1]], cell[(*a)[2]]};
-        track = name;
+        if (track != name) track = name;  // (most rows are of the track before: a compare costs less than a copy)
         return true;
     }
 

@@ -188,7 +188,9 @@ public:
             if (next_track_ == tracks_.size()) return false;
             begin(next_track_++);
         }
-        track = tracks_[next_track_ - 1].name;
+        // (compared rather than copied: most keys are of the track before, and
+        // a compare costs less than a copy)
+        if (const std::string& name = tracks_[next_track_ - 1].name; track != name) track = name;
         key_at(key_++, k);
         return true;
     }
