@@ -7,14 +7,36 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <optional>
 #include <tuple>
+#include <utility>
 
 #include "keyrot/error.hpp"
 #include "keyrot/track.hpp"
 
 namespace keyrot {
 namespace {
+
+/// Packed 32-bit floats of the host's byte order at any alignment, read as
+/// doubles: a forward iterator, so that vector::assign sizes its vector
+/// once and fills it, where resize would zero it first.
+struct packed_floats {
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = double;
+    using difference_type = std::ptrdiff_t;
+    using pointer = const double*;
+    using reference = double;
+    const char* at = nullptr;
+    double operator*() const noexcept {
+        float f;
+        std::memcpy(&f, at, 4);
+        return f;
+    }
+    packed_floats& operator++() noexcept { return at += 4, *this; }
+    packed_floats operator++(int) noexcept { return {std::exchange(at, at + 4)}; }
+    bool operator==(const packed_floats&) const = default;
+};
 
 struct component_type {
     int code;
@@ -197,13 +219,8 @@ void read_accessor(gltf_file& file, const gltf_json& index, const std::string& p
         // Packed floats, as nearly every exporter writes them: widened in one
         // loop the compiler vectorises, not a component at a time through
         // decoded() (a take's accessors are most of what is read).
-        values.resize(count * n);
-        const char* const from = bytes.data() + offset;
-        for (std::size_t k = 0; k < values.size(); ++k) {
-            float f;
-            std::memcpy(&f, from + 4 * k, 4);
-            values[k] = f;
-        }
+        const packed_floats from{bytes.data() + offset};
+        values.assign(from, packed_floats{from.at + 4 * count * n});
     } else {
         values.resize(count * n);
         for (std::size_t i = 0; i < count; ++i)
