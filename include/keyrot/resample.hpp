@@ -150,6 +150,7 @@ private:
     double next_frame_ = 0;
     double last_time_ = 0;
     quat last_key_, previous_;
+    segment popped_;  // the segment a key completes: one made for each key would be zeroed for each
     bool emitted_ = false;
     value_channel<vec3> translation_, scale_;
     value_channel<morph_weights> weights_;

@@ -146,14 +146,12 @@ void track_resampler::add(const key& k) {
     }
     last_key_ = builder_.add(k);
     last_time_ = k.time;
-    segment s;
-    while (builder_.pop(s, false)) frames_of(s);
+    while (builder_.pop(popped_, false)) frames_of(popped_);
 }
 
 void track_resampler::finish() {
     if (!started_) return;
-    segment s;
-    while (builder_.pop(s, true)) frames_of(s);
+    while (builder_.pop(popped_, true)) frames_of(popped_);
     frames_until(last_time_, last_key_);
     resolve_vectors(true);
 }

@@ -71,7 +71,8 @@ quat matrix_rotation(const raw_key& k, const std::string& source) {
 key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     const std::string& source = warn.source();
     key out;
-    out.at = k.at;
+    out.at.line = k.at.line;
+    if (!k.at.path.empty()) out.at.path = k.at.path;  // (a line's key has none: most keys copy no text)
     out.given_as = k.kind;
     out.translation = k.translation;
     out.scale = k.scale;
