@@ -128,10 +128,8 @@ private:
             return 0;
         const int first = read_all_at(fd_, into, static_cast<std::size_t>(half), offset_);
         reader.join();
-        for (const int failed : {first, second}) {
-            if (failed > 0) throw error(fmt::format("cannot read '{}': {}", source_, errno_text(failed)));
-            if (failed < 0) throw error(changed_while_read(source_));
-        }
+        for (const int failed : {first, second})
+            if (failed) throw read_failure(failed);
         offset_ += n;
         return n;
     }
@@ -140,10 +138,15 @@ private:
         ssize_t got;
         do got = ::pread(fd_, into, most, offset_);
         while (got < 0 && errno == EINTR);
-        if (got < 0) throw error(fmt::format("cannot read '{}': {}", source_, errno_text()));
-        if (got == 0) throw error(changed_while_read(source_));
+        if (got <= 0) throw read_failure(got < 0 ? errno : -1);
         offset_ += got;
         return static_cast<std::size_t>(got);
+    }
+    /// What a read that failed says: `failed` is its errno, or -1 where
+    /// the file ended before the bytes it held when opened (read_all_at's).
+    error read_failure(int failed) const {
+        return error(failed > 0 ? fmt::format("cannot read '{}': {}", source_, errno_text(failed))
+                                : changed_while_read(source_));
     }
     /// More of a spooled input, read and copied; false at its end.
     bool copied_more() {

@@ -25,7 +25,7 @@ struct packed_floats {
     using iterator_category = std::forward_iterator_tag;
     using value_type = double;
     using difference_type = std::ptrdiff_t;
-    using pointer = const double*;
+    using pointer = void;  // (no operator->: each element is made as it is read)
     using reference = double;
     const char* at = nullptr;
     double operator*() const noexcept {
