@@ -15,11 +15,11 @@ std::array<double, 3> xyz(const vec3& v) { return {v.x, v.y, v.z}; }
 }  // namespace
 
 void gathered_rows::begin_track(const std::string& name, channels, const track_interpolation& written) {
-    stored_track& track = tracks_.emplace_back();
-    track.name = name, track.how = written;
+    stored_track& t = tracks_.emplace_back();
+    t.name = name, t.how = written;
     if (tracks_.size() < 2) return;
     // A rig's tracks are as long as each other: room for as many rows as the track before had.
-    stored_track &t = tracks_.back(), &before = tracks_[tracks_.size() - 2];
+    const stored_track& before = tracks_[tracks_.size() - 2];
     for (const auto& [c, b] : {std::pair(&t.rotation, &before.rotation),
                                std::pair(&t.translation, &before.translation), std::pair(&t.scale, &before.scale)})
         c->times.reserve(b->times.size()), c->values.reserve(b->values.size()), c->shorts.reserve(b->shorts.size());
