@@ -74,9 +74,9 @@ void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
     sub.add_flag("--euler-continuous", o.euler_continuous,
                  "Euler output continuous from frame to frame (always for BVH), not in canonical ranges");
     sub.add_option("--settings-line", f.settings_line,
-                   fmt::format("CSV, NDJSON: a first line of settings where keyrot would misread the output "
-                               "without it (radians, frames at a rate not 24), always, or never (default: {})",
-                               to_string(settings_line::needed)))
+                   fmt::format("CSV, NDJSON: a first line of the settings the output was written with, always "
+                               "or never (default: {}; the columns' names say what keyrot needs to read it back)",
+                               to_string(settings_line::never)))
         ->check(CLI::IsMember(names<settings_line>()));
     add_convention_flags(sub, o, f);
 }

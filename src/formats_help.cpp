@@ -25,6 +25,9 @@ constexpr std::array<std::pair<rep, std::string_view>, 6> json_values = {{
 
 std::string columns(rep r, quat_order order) { return fmt::format("{}", fmt::join(rotation_columns(r, order), ",")); }
 
+/// Axis-angle's angle column, the one whose unit the help shows.
+const std::string_view axis_angle_angle = rotation_columns(rep::axis_angle, quat_order::wxyz).back();
+
 }  // namespace
 
 std::string formats_help() {
@@ -36,9 +39,13 @@ std::string formats_help() {
         if (r == rep::euler) out += "  (angles in the order of --euler's sequence)";
         out += '\n';
     }
-    out += fmt::format("Beside them: time or frame (at --key-fps, default 24); track (optional, names the track); {} (optional "
-                       "translation);\n{} (optional scale); w0,w1,... (optional morph weights, as many on every key of a track).\n",
-                       fmt::join(translation_columns, ","), fmt::join(scale_columns, ","));
+    out += fmt::format("Beside them: time or frame (at --key-fps, default 24; keyrot writes time, and frame beside\n"
+                       "it where there are frames); track (optional, names the track); {} (optional translation);\n"
+                       "{} (optional scale); w0,w1,... (optional morph weights, as many on every key of a track);\n"
+                       "{} and {} (angular velocity and acceleration). A column of angles may say\n"
+                       "their unit: {} is radians (keyrot writes them so), angle_deg degrees.\n",
+                       fmt::join(translation_columns, ","), fmt::join(scale_columns, ","), fmt::join(velocity_columns, ","),
+                       fmt::join(acceleration_columns, ","), column_in(axis_angle_angle, angle_unit::radians));
     out += "\nJSON: a document {\"keys\": [KEY, ...]}, a bare array [KEY, ...], or {\"tracks\": {\"NAME\": {\"keys\": [...]}, "
            "...}}.\nOptional document (or track) fields: \"angles\": \"degrees\" | \"radians\", \"euler\": \"ZYX\", "
            "\"quat_order\":\n\"wxyz\" | \"xyzw\", \"fps\" (the rate of \"frame\"). A KEY holds \"time\" or \"frame\", "
@@ -49,9 +56,16 @@ std::string formats_help() {
         if (r == rep::axis_angle) out += fmt::format(", \"{}\": a", angle_member);
         out += '\n';
     }
-    out += "\nNDJSON: one KEY object per line, with \"track\" when there are tracks; a first line without a rotation\n"
-           "holds the settings, as keyrot writes it where needed (--settings-line).\n"
-           "\nglTF 2.0 (.gltf with its buffers, or .glb): each node an animation moves is a track named after it\n"
+    out += fmt::format("\nNDJSON: one KEY object per line, with \"track\" when there are tracks; a member may say its\n"
+                       "unit or order, as keyrot writes them where not the default: \"{}\", \"{}\" (and the\n"
+                       "other angles'), \"{}\". A first line without a rotation holds the settings\n"
+                       "(--settings-line always writes one). A JSON or NDJSON object of CSV column names\n"
+                       "({{\"time\": 0, \"qw\": 1, ...}}, a table's rows as Miller and pandas write them) is read as that\n"
+                       "CSV row.\n",
+                       member_in(angle_member, angle_unit::radians, quat_order::wxyz),
+                       member_in(rotation_member(rep::euler), angle_unit::radians, quat_order::wxyz),
+                       member_in(rotation_member(rep::quat), angle_unit::degrees, quat_order::xyzw));
+    out += "\nglTF 2.0 (.gltf with its buffers, or .glb): each node an animation moves is a track named after it\n"
            "(\"<animation>/<node>\" when there are several animations; --animation picks one), its rotation,\n"
            "translation, scale and morph weights channels interpolated as their samplers say (LINEAR, STEP,\n"
            "CUBICSPLINE). A glTF output of a glTF input is that file with its samplers replaced; of any other\n"
@@ -63,8 +77,7 @@ std::string formats_help() {
            "\nA file's format is known by its extension (.csv, .json, .ndjson or .jsonl, .gltf, .glb, .bvh), else by\n"
            "its content.\n"
            "keyrot reads all it writes: a JSON document with \"frames\" in place of \"keys\", and a CSV file's "
-           "first line\n\"# keyrot {...}\", which states its settings where keyrot would misread it without (radians, "
-           "frame\nnumbers at a rate other than 24; --settings-line).\n";
+           "first line\n\"# keyrot {...}\" of its settings (--settings-line always).\n";
     return out;
 }
 

@@ -44,32 +44,7 @@ knee,0,0,0.9659,0.2588,0,0,,,
 knee,1,0.5,0.9914,0.1305,0,0,,,
 knee,2,1,0.9659,0.2588,0,0,,," -- "$keyrot" resample "$data/walk.csv" --fps 2 --rep quat --precision 4
 
-# The README's other examples, as printed there.
-expect "readme walk ndjson" 0 '{"track": "hip", "frame": 0, "time": 0, "rotvec": [0, 0, 0], "translation": [0, 0.95, 0]}
-{"track": "hip", "frame": 1, "time": 0.5, "rotvec": [0, 10, 0], "translation": [0.4, 0.97, 0]}
-{"track": "hip", "frame": 2, "time": 1, "rotvec": [0, 0, 0], "translation": [0.8, 0.95, 0]}
-{"track": "knee", "frame": 0, "time": 0, "rotvec": [30, 0, 0]}
-{"track": "knee", "frame": 1, "time": 0.5, "rotvec": [15, 0, 0]}
-{"track": "knee", "frame": 2, "time": 1, "rotvec": [30, 0, 0]}' -- \
-    "$keyrot" resample "$data/walk.csv" --fps 2 --to ndjson --rep rotvec --precision 4
-expect "readme squad" 0 "frame,time,e1,e2,e3
-0,0,0,0,0
-1,0.041666666666666664,2.953,-0.365,0.273
-2,0.08333333333333333,5.955,-0.75,0.517
-11,0.4583333333333333,32.433,-4.582,1.864
-12,0.5,35,-5,2" -- bash -c "'$keyrot' resample '$data/head_turn.json' --rep euler --method squad --precision 3 --to csv | sed -n '1,4p;13,14p'"
-expect "readme convert quat" 0 "frame,qw,qx,qy,qz
-0,1,0,0,0
-12,0.952435,0.029743,-0.036351,0.3011
-20,0.860684,0.07366,-0.05805,0.500428
-36,0.921629,-0.026695,0.064447,0.381751
-48,1,0,0,0" -- "$keyrot" convert "$data/head_turn.json" --rep quat --to csv --precision 6
-expect "readme convert json" 0 '{"rep": "axis-angle", "angles": "degrees", "keys": [
-{"frame": 0, "axis": [1, 0, 0], "angle": 0},
-{"frame": 12, "axis": [0.098, -0.119, 0.988], "angle": 35.485},
-{"frame": 20, "axis": [0.145, -0.114, 0.983], "angle": 61.213},
-{"frame": 36, "axis": [-0.069, 0.166, 0.984], "angle": 45.669},
-{"frame": 48, "axis": [1, 0, 0], "angle": 0}]}' -- "$keyrot" convert "$data/head_turn.json" --rep axis-angle --precision 3 --to json
+# (The examples of the README and the user guide are run by docs_test.py.)
 
 # stdin, sniffed as JSON; output in the input's format
 expect "stdin json" 0 '{"fps": 1, "method": "slerp", "rep": "rotvec", "angles": "radians", "frames": [

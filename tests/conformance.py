@@ -279,23 +279,23 @@ def write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps, interl
 
 
 # ---------------------------------------------------------------- outputs
-def read_output(text, fmt, rep, seq, degrees, order, stated_fps=None):
-    """-> {track: [(frame or None, time or None, matrix, translation or None)]}"""
-    unit = (math.pi / 180) if degrees else 1.0
-    def rot(get):
+def read_output(text, fmt, rep, seq, degrees, order):
+    """-> {track: [(frame or None, time, matrix, translation or None)]}"""
+    scale = (math.pi / 180) if degrees else 1.0
+    def rot(get, quat_order):
         if rep == "quat":
             q = get("quat")
-            w, x, y, z = q if order == "wxyz" else q[3:] + q[:3]
+            w, x, y, z = q if quat_order == "wxyz" else q[3:] + q[:3]
             assert abs(math.sqrt(w * w + x * x + y * y + z * z) - 1) < 1e-12, "quat output is not unit"
             return Rotation.from_quat([x, y, z, w]).as_matrix(), None
         if rep == "axis-angle":
             ax, ang = get("axis"), get("angle")
-            assert 0 <= ang <= math.pi / unit + 1e-12, "angle outside [0, 180]"
-            return Rotation.from_rotvec(np.array(ax) * ang * unit).as_matrix(), None
+            assert 0 <= ang <= math.pi / scale + 1e-12, "angle outside [0, 180]"
+            return Rotation.from_rotvec(np.array(ax) * ang * scale).as_matrix(), None
         if rep == "rotvec":
-            return Rotation.from_rotvec(np.array(get("rotvec")) * unit).as_matrix(), None
+            return Rotation.from_rotvec(np.array(get("rotvec")) * scale).as_matrix(), None
         if rep == "euler":
-            e = np.array(get("euler")) * unit
+            e = np.array(get("euler")) * scale
             assert all(-math.pi - 1e-12 <= a <= math.pi + 1e-12 for a in e), "Euler angle outside [-180, 180]"
             lo, hi = (-math.pi / 2, math.pi / 2) if seq[0].lower() != seq[2].lower() else (0, math.pi)
             assert lo - 1e-12 <= e[1] <= hi + 1e-12, "middle Euler angle outside its canonical range"
@@ -305,75 +305,65 @@ def read_output(text, fmt, rep, seq, degrees, order, stated_fps=None):
             assert list(m[3]) == [0, 0, 0, 1]
             return m[:3, :3], list(m[:3, 3])
         return m, None
-    def check_settings(h, everything):
-        # What the output states about itself (SPEC): a JSON document all its
-        # settings; a CSV or NDJSON file only what keyrot reading it back
-        # with no flags would misread (resample's frames carry their times).
+    def check_settings(h):
+        # A JSON document states all its settings as fields (SPEC).
         angles = "degrees" if degrees else "radians"
-        if everything:
-            assert h["rep"] == rep, "stated rep %r, written %r" % (h["rep"], rep)
-            assert h["angles"] == angles, "stated angles %r" % h["angles"]
-            if rep == "euler":
-                assert h["euler"] == seq, "stated Euler sequence %r, written %r" % (h["euler"], seq)
-            if rep == "quat":
-                assert h["quat_order"] == order, "stated quat_order %r, written %r" % (h["quat_order"], order)
-            return
-        needed = {}
-        if stated_fps is not None:  # frame numbers without times, at a rate other than 24
-            needed["fps"] = stated_fps
-        if not degrees and rep in ("axis-angle", "rotvec", "euler"):
-            needed["angles"] = "radians"
-        if fmt == "ndjson" and rep == "quat" and order != "wxyz":
-            needed["quat_order"] = order
-        assert h == needed, "stated %r, expected %r" % (h, needed)
+        assert h["rep"] == rep, "stated rep %r, written %r" % (h["rep"], rep)
+        assert h["angles"] == angles, "stated angles %r" % h["angles"]
+        if rep == "euler":
+            assert h["euler"] == seq, "stated Euler sequence %r, written %r" % (h["euler"], seq)
+        if rep == "quat":
+            assert h["quat_order"] == order, "stated quat_order %r, written %r" % (h["quat_order"], order)
+    # A CSV or NDJSON file begins with its first row (no line of settings),
+    # and the names of its columns or members say the unit and order where
+    # they are not the default: "angle_rad", "quat_xyzw".
+    unit = "" if degrees else "_rad"
     result = {}
     if fmt == "csv":
-        if text.startswith("# keyrot {"):
-            first, _, text = text.partition("\n")
-            check_settings(json.loads(first[len("# keyrot "):]), False)
-        else:
-            check_settings({}, False)
+        assert not text.startswith("#"), "a CSV output begins with a comment line"
         rows = list(csv.DictReader(io.StringIO(text)))
         for r in rows:
             def get(name, r=r):
                 if name == "quat":
-                    return [float(r[c]) for c in (["qw", "qx", "qy", "qz"] if order == "wxyz" else ["qx", "qy", "qz", "qw"])]
+                    return [float(r[c]) for c in ("qw", "qx", "qy", "qz")]
                 if name == "axis":
                     return [float(r[c]) for c in ("ax", "ay", "az")]
                 if name == "angle":
-                    return float(r["angle"])
+                    return float(r["angle" + unit])
                 if name == "rotvec":
-                    return [float(r[c]) for c in ("rx", "ry", "rz")]
+                    return [float(r[c + unit]) for c in ("rx", "ry", "rz")]
                 if name == "euler":
-                    return [float(r[c]) for c in ("e1", "e2", "e3")]
+                    return [float(r[c + unit]) for c in ("e1", "e2", "e3")]
                 n = 3 if rep == "matrix" else 4
                 return [[float(r["m%d%d" % (i, j)]) for j in range(n)] for i in range(n)]
-            m, t4 = rot(get)
+            m, t4 = rot(get, "wxyz")
             t = t4 if t4 is not None else ([float(r[c]) for c in ("tx", "ty", "tz")] if r.get("tx") else None)
-            frame = float(r["frame"]) if "frame" in r else None
-            time = float(r["time"]) if "time" in r else None
-            result.setdefault(r.get("track", ""), []).append((frame, time, m, t))
+            frame = float(r["frame"]) if r.get("frame") else None
+            result.setdefault(r.get("track", ""), []).append((frame, float(r["time"]), m, t))
         return result
     objs = []
     if fmt == "ndjson":
         lines = text.splitlines()
-        first = json.loads(lines[0]) if lines else {}
-        header = first if "frame" not in first and "time" not in first else None
-        check_settings(header or {}, False)
-        for line in lines[1 if header is not None else 0:]:
-            objs.append((json.loads(line).get("track", ""), json.loads(line)))
+        for line in lines:
+            o = json.loads(line)
+            assert "time" in o, "an NDJSON line without a time: %r" % line
+            objs.append((o.get("track", ""), o))
+        names = {"quat": "quat" if order == "wxyz" else "quat_xyzw", "angle": "angle" + unit,
+                 "rotvec": "rotvec" + unit, "euler": "euler" + unit}
+        member_order = order  # (as the name says)
     else:
         doc = json.loads(text)
-        check_settings(doc, True)
+        check_settings(doc)
+        names, member_order = {}, order
         if "tracks" in doc:
             for name, tr in doc["tracks"].items():
                 objs += [(name, o) for o in tr.get("frames", tr.get("keys"))]
         else:
             objs = [("", o) for o in doc.get("frames", doc.get("keys"))]
     for name, o in objs:
-        m, t4 = rot(lambda n, o=o: o[n])
+        m, t4 = rot(lambda n, o=o: o[names.get(n, n)], member_order)
         t = t4 if t4 is not None else o.get("translation")
-        result.setdefault(name, []).append((o.get("frame"), o.get("time"), m, t))
+        result.setdefault(name, []).append((o.get("frame"), o["time"], m, t))
     return result
 
 
@@ -447,8 +437,7 @@ def run_case(keyrot, rng, case):
     desc = f"case {case}: {' '.join(args[1:])}\n--- input ---\n{text[:2000]}"
     if proc.returncode != 0:
         return f"{desc}\nexit {proc.returncode}: {proc.stderr.decode()}"
-    stated_fps = key_fps if command == "convert" and by_frame and key_fps != 24 else None
-    out = read_output(proc.stdout.decode(), out_fmt, out_rep, out_seq, degrees, order, stated_fps)
+    out = read_output(proc.stdout.decode(), out_fmt, out_rep, out_seq, degrees, order)
     names = list(tracks) if n_tracks > 1 else [""]
     if list(out) != names and not (command == "resample" and set(out) <= set(names)):
         return f"{desc}\ntracks {list(out)} != {names}"
@@ -465,7 +454,7 @@ def run_case(keyrot, rng, case):
             return f"{desc}\ntrack {name}: {len(got)} rows, expected {len(want)}"
         for row, (t, m, tr) in zip(got, want):
             frame, time, gm, gt = row
-            if time is not None and abs(time - t) > 1e-12:
+            if abs(time - t) > 1e-12:
                 return f"{desc}\ntrack {name}: time {time} != {t}"
             if not close(gm, m):
                 return f"{desc}\ntrack {name} time {t}: matrix\n{gm}\n!= reference\n{m}"

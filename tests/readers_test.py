@@ -10,9 +10,13 @@ known from the inputs (a 1 s track at 4 fps is 5 frames; a constant-speed
 turn reduces to its two ends), not taken from keyrot.
 
 Also: the course's worked example is the line after the header; a BVH take
-with two joints of one name reads as two plain tracks in pandas; the
-settings line appears exactly where keyrot would otherwise misread the
-output, and the README's ways of reading such a file work.
+with two joints of one name reads as two plain tracks in pandas; and every
+flag that changes a column (radians, the quaternion order, frames at any
+key rate, reduce of a BVH and of a glTF file, matrices, velocities) still
+gives a plain table that each of those readers takes, whose names say the
+unit and order, and that keyrot reads back with no flags to the same
+rotations (compare against the same command without the flag passes). No
+output begins with a line of settings unless asked (--settings-line always).
 
 Usage: readers_test.py KEYROT DATA_DIR. Exit 0 when all pass, 1 otherwise,
 77 when pandas, Miller, csvkit or jq is missing.
@@ -105,6 +109,117 @@ def ndjson_readers(name, text, fields, rows):
     check(rc == 0 and len(records) == rows, f"{name}: mlr --ijsonl: status {rc}, {len(records)} records")
 
 
+def read_back_equal(name, plain, flagged, fmt, *flags):
+    """keyrot reads `flagged` (of format `fmt`) back with no flags (but the Euler sequence, which has
+    no default) to the same rotations at the same times as `plain` (CSV): compare of the two passes,
+    every row matched (with --ignore-extra among `flags`: every row of `flagged`, graded as the key;
+    otherwise `plain` is the key, whose tracks without a translation a 4x4 matrix's zero one matches)."""
+    with open("plain.csv", "w") as f:
+        f.write(plain)
+    with open("flagged." + fmt, "w") as f:
+        f.write(flagged)
+    files = ["flagged." + fmt, "plain.csv"] if "--ignore-extra" in flags else ["plain.csv", "flagged." + fmt]
+    p = subprocess.run([KEYROT, "compare", *files, *flags, "--tol", "1e-9", "--report", "json"], capture_output=True,
+                       text=True)
+    report = json.loads(p.stdout) if p.stdout.startswith("{") else {}
+    check(p.returncode == 0 and report.get("failed") == 0 and report.get("missing") == 0 and
+          ("--ignore-extra" in flags or report.get("extra") == 0),
+          f"{name}: read back with no flags, the same rotations: status {p.returncode} {p.stderr.strip()}")
+
+
+def flagged_outputs(homework, head_turn, walk):
+    """Each flag that changes a column: a plain table every reader takes, read back by keyrot with no flags."""
+    bvh = os.path.join(DATA, "capture.bvh")
+    gltf = os.path.join(DATA, "arm_wave.gltf")
+    aa = ["ax", "ay", "az", "angle"]
+    cases = [
+        # (name, command, flags, CSV columns, NDJSON members, rows, flags keyrot reads the outputs with)
+        ("axis-angle in radians", ["resample", homework, "--fps", "4"], ["--out-radians"],
+         ["frame", "time", "ax", "ay", "az", "angle_rad"], ["frame", "time", "axis", "angle_rad"], 5, []),
+        ("rotation vectors in radians", ["resample", homework, "--fps", "4", "--rep", "rotvec"], ["--radians"],
+         ["frame", "time", "rx_rad", "ry_rad", "rz_rad"], ["frame", "time", "rotvec_rad"], 5, []),
+        ("Euler angles in radians", ["resample", head_turn, "--fps", "4", "--rep", "euler"], ["--out-radians"],
+         ["frame", "time", "e1_rad", "e2_rad", "e3_rad"], ["frame", "time", "euler_rad"], 9, ["--euler", "ZYX"]),
+        ("quaternions in xyzw order", ["resample", homework, "--fps", "4", "--rep", "quat"], ["--quat-order", "xyzw"],
+         ["frame", "time", "qx", "qy", "qz", "qw"], ["frame", "time", "quat_xyzw"], 5, []),
+        # (the keys at 30 fps: the frames resample makes at 30 fps from them, five of which they are)
+        ("frames at 30 fps", ["convert", head_turn, "--rep", "quat"], ["--key-fps", "30"],
+         ["frame", "time", "qw", "qx", "qy", "qz"], ["frame", "time", "quat"], 5, ["--ignore-extra"]),
+        ("reduce of a 120 Hz BVH take", ["reduce", bvh, "--tol", "0.5"], ["--rep", "axis-angle"],
+         ["track", "frame", "time", *aa, "tx", "ty", "tz"], ["track", "frame", "time", "axis", "angle", "translation"],
+         None, []),
+        ("reduce of a glTF file", ["reduce", gltf, "--tol", "0.5"], ["--rep", "rotvec"],
+         ["track", "time", "rx", "ry", "rz", "tx", "ty", "tz"], ["track", "time", "rotvec", "translation"], None, []),
+        ("matrices", ["resample", walk, "--fps", "2"], ["--rep", "matrix"],
+         ["track", "frame", "time", "m00", "m01", "m02", "m10", "m11", "m12", "m20", "m21", "m22", "tx", "ty", "tz"],
+         ["track", "frame", "time", "matrix", "translation"], 6, []),
+        ("4x4 matrices", ["resample", walk, "--fps", "2"], ["--rep", "matrix4"],
+         ["track", "frame", "time", *[f"m{i}{j}" for i in range(4) for j in range(4)]], ["track", "frame", "time", "matrix"],
+         6, []),
+        ("angular velocity in radians", ["resample", walk, "--fps", "2", "--velocity", "--acceleration"],
+         ["--out-radians"],
+         ["track", "frame", "time", "ax", "ay", "az", "angle_rad", "tx", "ty", "tz", "wx_rad", "wy_rad", "wz_rad",
+          "dwx_rad", "dwy_rad", "dwz_rad"],
+         ["track", "frame", "time", "axis", "angle_rad", "translation", "angular_velocity_rad",
+          "angular_acceleration_rad"], 6, []),
+    ]
+    for name, command, flags, columns, members, rows, key_flags in cases:
+        plain = keyrot(*command, "--to", "csv", *(["--rep", "quat"] if command[0] == "reduce" else []))
+        if "--ignore-extra" in key_flags:
+            plain = keyrot("resample", head_turn, "--key-fps", "30", "--fps", "30", "--to", "csv")
+        for fmt, readers, names in (("csv", csv_readers, columns), ("ndjson", ndjson_readers, members)):
+            out = keyrot(*command, *flags, "--to", fmt)
+            count = rows if rows is not None else len(plain.splitlines()) - 1
+            check(not out.startswith("#") and (fmt == "csv" or "time" in json.loads(out.splitlines()[0])),
+                  f"{name} {fmt}: its first row first, with a time")
+            readers(f"{name} {fmt}", out, names, count)
+            read_back_equal(f"{name} {fmt}", plain, out, fmt, *key_flags)
+    # The settings line only when asked for, and keyrot reads it
+    stated = keyrot("resample", homework, "--fps", "4", "--rep", "rotvec", "--radians", "--to", "csv", "--settings-line",
+                    "always")
+    check(stated.startswith('# keyrot {"fps": 4, "method": "slerp", "rep": "rotvec", "angles": "radians"}\n'),
+          f"--settings-line always: {stated[:80]!r}")
+    read_back_equal("--settings-line always", keyrot("resample", homework, "--fps", "4", "--to", "csv"), stated, "csv")
+    check(keyrot("resample", homework, "--fps", "4", "--to", "ndjson", "--settings-line", "always").startswith(
+        '{"fps": 4, "method": "slerp", "rep": "axis-angle", "angles": "degrees"}\n'), "--settings-line always: NDJSON")
+    for args in (["--rep", "quat", "--quat-order", "xyzw"], ["--rep", "euler", "--out-euler", "ZYX"], ["--fps", "30"],
+                 ["--method", "squad"], ["--radians", "--rep", "euler", "--out-euler", "xyz"]):
+        out = keyrot("resample", homework, "--to", "csv", *args)
+        check(out.startswith("frame,time,"), f"resample {' '.join(args)}: plain")
+
+
+def records_read_back(walk, head_turn):
+    """A table's rows as JSON records, as Miller and pandas write them, read as the CSV they came from."""
+    tables = {
+        "walk": keyrot("resample", walk, "--fps", "8", "--rep", "quat"),  # two tracks, a translation on one
+        "head turn": keyrot("convert", head_turn, "--rep", "euler", "--to", "csv"),  # frames with times
+        "radians": keyrot("resample", walk, "--fps", "4", "--rep", "rotvec", "--radians", "--velocity"),
+    }
+    for name, table in tables.items():
+        flags = ["--euler", "ZYX"] if name == "head turn" else []
+        with open("table.csv", "w") as f:
+            f.write(table)
+        frame = pd.read_csv("table.csv")
+        made = {
+            "Miller NDJSON": tool(["mlr", "--icsv", "--ojsonl", "cat"], table)[1],
+            "Miller JSON": tool(["mlr", "--icsv", "--ojson", "cat"], table)[1],
+            "pandas records": frame.to_json(orient="records"),
+            "pandas records, lines": frame.to_json(orient="records", lines=True),
+        }
+        for how, text in made.items():
+            fmt = "ndjson" if "NDJSON" in how or "lines" in how else "json"
+            with open("records." + fmt, "w") as f:
+                f.write(text)
+            # (pandas writes 10 significant digits: within 1e-6 degrees)
+            p = subprocess.run([KEYROT, "compare", "table.csv", "records." + fmt, *flags, "--tol", "1e-6",
+                                "--tol-translation", "1e-9", "--report", "json"], capture_output=True, text=True)
+            report = json.loads(p.stdout) if p.stdout.startswith("{") else {}
+            rows = len(table.splitlines()) - 1
+            check(p.returncode == 0 and report.get("rows") == rows and report.get("failed") == 0,
+                  f"{name} as {how}: read as the CSV: status {p.returncode}, {report.get('rows')} rows of {rows} "
+                  f"{p.stderr.strip()}")
+
+
 def main():
     work = tempfile.mkdtemp()
     os.chdir(work)
@@ -125,11 +240,12 @@ def main():
                    ["frame", "time", "axis", "angle"], 5)
     ndjson_readers("resample walk --fps 2 ndjson", keyrot("resample", walk, "--fps", "2", "--to", "ndjson"),
                    ["track", "frame", "time", "axis", "angle", "translation"], 6)
-    # convert: head_turn's 5 keys, numbered by frame (at 24 fps, the default, which is not written)
-    csv_readers("convert head_turn", keyrot("convert", head_turn, "--to", "csv"), ["frame", *aa], 5)
-    ndjson_readers("convert head_turn ndjson", keyrot("convert", head_turn, "--to", "ndjson"), ["frame", "axis", "angle"], 5)
+    # convert: head_turn's 5 keys, numbered by frame, with their times beside
+    csv_readers("convert head_turn", keyrot("convert", head_turn, "--to", "csv"), ["frame", "time", *aa], 5)
+    ndjson_readers("convert head_turn ndjson", keyrot("convert", head_turn, "--to", "ndjson"),
+                   ["frame", "time", "axis", "angle"], 5)
     csv_readers("convert head_turn euler", keyrot("convert", head_turn, "--to", "csv", "--rep", "euler"),
-                ["frame", "e1", "e2", "e3"], 5)
+                ["frame", "time", "e1", "e2", "e3"], 5)
     # slerp: the course's worked example is the line after the header
     example = keyrot("slerp", "0,0,0,1", "0,0,0.7071067811865476,0.7071067811865476", "--quat-order", "xyzw", "--rep",
                      "quat", "--precision", "4", "-t", "0.5")
@@ -170,27 +286,8 @@ def main():
     check(list(dict.fromkeys(names)) == ["Hips", "Spine", "Head", "Spine.2"] and not names.isna().any(),
           f"duplicate BVH joint names: {list(dict.fromkeys(names))}")
 
-    # The settings line is written where keyrot would misread the output
-    # without it, and only then; the ways the README gives to read it.
-    radians = keyrot("resample", homework, "--fps", "4", "--rep", "rotvec", "--radians", "--to", "csv")
-    check(radians.startswith('# keyrot {"angles": "radians"}\nframe,time,rx,ry,rz\n'), "radians: one settings line")
-    frame = pd.read_csv(io.StringIO(radians), skiprows=1)
-    check(list(frame.columns) == ["frame", "time", "rx", "ry", "rz"] and len(frame) == 5, "radians: pandas skiprows=1")
-    for args in (["--icsvlite", "--skip-comments"], ["--icsv", "--skip-comments", "--lazy-quotes"]):
-        rc, out, err = tool(["mlr", *args, "--ojson", "cat"], radians)
-        check(rc == 0 and len(json.loads(out)) == 5, f"radians: mlr {' '.join(args)}: status {rc} {err.strip()}")
-    rc, out, _ = tool(["csvjson", "--skip-lines", "1"], radians)
-    check(rc == 0 and len(json.loads(out)) == 5, "radians: csvjson --skip-lines 1")
-    never = keyrot("resample", homework, "--fps", "4", "--rep", "rotvec", "--radians", "--to", "csv", "--settings-line", "never")
-    check(never == radians.split("\n", 1)[1], "--settings-line never: the same rows without the line")
-    stated = keyrot("convert", head_turn, "--to", "csv", "--key-fps", "30")
-    check(stated.startswith('# keyrot {"fps": 30}\nframe,'), "frames at a stated rate other than 24: the rate is stated")
-    xyzw = keyrot("convert", homework, "--to", "ndjson", "--rep", "quat", "--quat-order", "xyzw")
-    check(xyzw.startswith('{"quat_order": "xyzw"}\n'), "NDJSON quaternions in xyzw order: the order is stated")
-    for args in (["--rep", "quat", "--quat-order", "xyzw"], ["--rep", "euler", "--out-euler", "ZYX"], ["--fps", "30"],
-                 ["--method", "squad"]):
-        out = keyrot("resample", homework, "--to", "csv", *args)
-        check(out.startswith("frame,time,"), f"resample {' '.join(args)}: plain")
+    flagged_outputs(homework, head_turn, walk)
+    records_read_back(walk, head_turn)
 
     shutil.rmtree(work)
     print(f"{checks - len(failures)} passed, {len(failures)} failed")

@@ -36,7 +36,7 @@ struct options {
     std::optional<angle_unit> out_angles;  ///< --out-degrees / --out-radians
     std::optional<int> precision;
     bool euler_continuous = false;  ///< --euler-continuous
-    settings_line settings_when = settings_line::needed;  ///< --settings-line
+    settings_line settings_when = settings_line::never;  ///< --settings-line
     bool strict = false;
     bool fsync = false;  ///< --fsync: outputs durable against a power cut
     bool compact = false;  ///< --compact: a glTF output's rotations as normalised 16-bit integers

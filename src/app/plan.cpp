@@ -18,7 +18,8 @@ std::optional<std::string> output_path(const options& o) {
 }
 
 key_settings settings_of(const options& o) {
-    return {o.radians ? angle_unit::radians : angle_unit::degrees, o.euler, o.key_fps, o.strict};
+    return {o.radians ? angle_unit::radians : angle_unit::degrees, o.radians, o.euler, o.key_fps, o.key_fps.has_value(),
+            o.strict};
 }
 
 read_options reading(const options& o, const std::string& source) {
@@ -26,8 +27,7 @@ read_options reading(const options& o, const std::string& source) {
     ro.source = source;
     ro.settings = settings_of(o);
     ro.order = o.order;
-    ro.given.angles = o.radians;
-    ro.given.order = o.order_given;
+    ro.order_given = o.order_given;
     ro.max_bytes = o.max_bytes.value_or(default_max_bytes);
     ro.max_line_bytes = o.max_bytes.value_or(default_max_line_bytes);
     ro.animation = o.animation;

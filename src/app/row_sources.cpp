@@ -36,7 +36,6 @@ void own_methods(const track_interpolation& own, Options& r) {
 table_row key_row(const key& k) {
     return table_row{{k.time, k.frame, k.rotation, k.translation, k.scale, k.weights,  // (views k's)
                       k.rates.get()},
-                     k.has_time,
                      false,
                      {},
                      k.spline.get()};
@@ -195,25 +194,17 @@ public:
         info.named = d.named;
         info.carried = d.carried();
         info.times = time_columns::as_given;
-        info.all_frames = d.all_frames;
-        info.any_time = d.any_time;
-        info.counted = d.counted;
+        info.any_frame = d.any_frame;
         info.velocity = d.velocity, info.acceleration = d.acceleration;
         info.rows_name = d.frames ? "frames" : "keys";
-        // The rate frames count at, where the input states it (an assumed one is not written as if stated).
-        if (d.any_frame) info.fps = d.tracks.front().key_fps;
+        // The rate frames count at, where the input states one for every track (an assumed one is not
+        // written as if stated). Rows carry their times all the same: no reader needs it.
+        const auto& first = d.tracks.front().key_fps;
+        if (d.any_frame && std::all_of(d.tracks.begin(), d.tracks.end(), [&](const auto& t) { return t.key_fps == first; }))
+            info.fps = first;
         return info;
     }
-    /// Frame numbers at one rate, the one the output states.
-    void check(const document_facts& d, warnings& warn) const override {
-        if (!d.any_frame) return;
-        const auto rate = [](const auto& t) { return t.key_fps.value_or(default_key_fps); };
-        for (const auto& t : d.tracks)
-            if (rate(t) != rate(d.tracks.front()))
-                throw input_error(warn.source(), fmt::format("tracks '{}' and '{}' count frames at {} and {} fps: expected "
-                                                             "one rate in a file that convert writes (resample writes times)",
-                                                             d.tracks.front().name, t.name, rate(d.tracks.front()), rate(t)));
-    }
+    void check(const document_facts&, warnings&) const override {}
     void check_key(const key&, const key&, const std::string&, const std::string&) const override {}
     /// The keys as the file interpolates them (LINEAR for a file that does not say).
     track_interpolation written(const std::optional<track_interpolation>& own) const override {

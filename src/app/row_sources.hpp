@@ -29,8 +29,6 @@ struct document_facts {
     };
     std::vector<track_facts> tracks;
     bool named = false;
-    bool all_frames = true;  // every key has a frame
-    bool any_time = false;   // some key has a time
     bool frames = false;     // some key has both: keyrot's own frames
     bool any_frame = false;  // some key has a frame
     bool counted = false;    // some key is timed by its frame number alone
@@ -46,8 +44,6 @@ struct document_facts {
     /// The same, for a caller that has asked on_last_track(track) already
     /// (`same_track`): a name compared once a key, not twice.
     void add(const std::string& track, const key_settings& s, key&& k, bool same_track) {
-        all_frames = all_frames && k.frame.has_value();
-        any_time = any_time || k.has_time;
         frames = frames || (k.frame && k.has_time);
         if (!same_track) tracks.push_back({track, k, k, {}, s.euler, s.key_fps, 0, s.interpolation});
         any_frame = any_frame || k.frame.has_value();
@@ -61,8 +57,6 @@ struct document_facts {
     /// The facts of tracks read apart from these (`later`), after them.
     void append(document_facts&& later) {
         named = named || later.named;
-        all_frames = all_frames && later.all_frames;
-        any_time = any_time || later.any_time;
         frames = frames || later.frames;
         any_frame = any_frame || later.any_frame;
         counted = counted || later.counted;

@@ -48,7 +48,7 @@ _keyrot() {
         --path) values="shortest direct" ;;
         --quat-order) values="wxyz xyzw" ;;
         --report) [[ $command == compare ]] && values="csv json" || values="json" ;;
-        --settings-line) values="needed always never" ;;
+        --settings-line) values="never always" ;;
         --euler | --out-euler) values=$euler ;;
         -o | --output | --plot)
             COMPREPLY=($(compgen -f -- "$cur"))

@@ -84,7 +84,7 @@ bool key_stream::next(std::string& name, key& k) {
     while (track_ < whole_->tracks.size() && key_ == whole_->tracks[track_].keys.size()) ++track_, key_ = 0;
     if (track_ == whole_->tracks.size()) return false;
     const keyrot::track& t = whole_->tracks[track_];
-    if (key_ == 0) settings_ = {angle_unit::degrees, t.euler, t.key_fps, false, t.interpolation};
+    if (key_ == 0) settings_ = {angle_unit::degrees, false, t.euler, t.key_fps, false, false, t.interpolation};
     name = t.name;
     k = t.keys[key_++];
     return true;

@@ -49,18 +49,18 @@ TEST_CASE("resample from standard input to standard output") {
     CHECK(r.out == "frame,time,ax,ay,az,angle\n0,0,1,0,0,0\n1,0.25,0,0,1,22.5\n2,0.5,0,0,1,45\n3,0.75,0,0,1,67.5\n4,1,0,0,1,90\n");
 }
 
-TEST_CASE("convert keeps the keys and their frame column") {
+TEST_CASE("convert keeps the keys and their frame column, with their times beside it") {
     const result r = run_with(parse({"convert", "--rep", "quat", "--precision", "4"}),
-                              "frame,ax,ay,az,angle\n0,0,0,1,0\n7,0,0,1,90\n");
-    // at the default rate, which is assumed and not written as if stated
-    CHECK(r.out == "frame,qw,qx,qy,qz\n0,1,0,0,0\n7,0.7071,0,0,0.7071\n");
+                              "frame,ax,ay,az,angle\n0,0,0,1,0\n6,0,0,1,90\n");
+    // at the default rate: 6 / 24 = 0.25 s
+    CHECK(r.out == "frame,time,qw,qx,qy,qz\n0,0,1,0,0,0\n6,0.25,0.7071,0,0,0.7071\n");
     const result j = run_with(parse({"convert", "--to", "json", "--rep", "rotvec"}), "time,qw,qx,qy,qz\n0.5,1,0,0,0\n");
     CHECK(j.out == "{\"rep\": \"rotvec\", \"angles\": \"degrees\", \"keys\": [\n{\"time\": 0.5, \"rotvec\": [0, 0, 0]}]}\n");
     const result f = run_with(parse({"convert", "--to", "json", "--rep", "rotvec"}), "frame,qw,qx,qy,qz\n12,1,0,0,0\n");
-    CHECK(f.out == "{\"rep\": \"rotvec\", \"angles\": \"degrees\", \"keys\": [\n{\"frame\": 12, \"rotvec\": [0, 0, 0]}]}\n");
-    // a rate the user gave comes along, so that the frames read back as the same times
-    const result stated = run_with(parse({"convert", "--rep", "quat", "--key-fps", "30"}), "frame,qw,qx,qy,qz\n0,1,0,0,0\n");
-    CHECK(stated.out == "# keyrot {\"fps\": 30}\nframe,qw,qx,qy,qz\n0,1,0,0,0\n");
+    CHECK(f.out == "{\"rep\": \"rotvec\", \"angles\": \"degrees\", \"keys\": [\n{\"frame\": 12, \"time\": 0.5, \"rotvec\": [0, 0, 0]}]}\n");
+    // a rate the user gave times the frames: no line of settings is needed to read them back
+    const result stated = run_with(parse({"convert", "--rep", "quat", "--key-fps", "30"}), "frame,qw,qx,qy,qz\n3,1,0,0,0\n");
+    CHECK(stated.out == "frame,time,qw,qx,qy,qz\n3,0.1,1,0,0,0\n");
 }
 
 TEST_CASE("resample output chains into convert, in every format") {

@@ -34,10 +34,10 @@ std::vector<std::vector<sample>> tracks_of(std::size_t count, std::size_t rows) 
 }
 
 /// Track t's row for sample s: track 1's rows (of rotations alone) without
-/// a time, as convert writes keys that gave only a frame.
+/// a frame, as convert writes keys that gave only a time.
 table_row as_row(const sample& s, std::size_t t) {
     table_row r{s};
-    r.has_time = t != 1;
+    if (t == 1) r.frame.reset();
     return r;
 }
 

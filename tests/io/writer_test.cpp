@@ -41,52 +41,85 @@ TEST_CASE("writers: CSV, JSON and NDJSON tables") {
     CHECK(write(format::csv, info, w, rows, "a,b").find("\"a,b\",0,0,1,0,0,0,1,2,3\n") != std::string::npos);
 }
 
-TEST_CASE("a settings line only where keyrot would otherwise misread the rows") {
+TEST_CASE("outputs are plain: the names of the columns and members say the unit and the order") {
     const std::vector<table_row> rows = {{{0.5, 12.0, quat{}, std::nullopt}}};
     table_info frames;  // resample's: frames with their times
     frames.fps = 30;
     frames.method = "slerp";
-    table_info keys = frames;  // convert's: frame numbers alone
+    table_info keys = frames;  // convert's: each key's time, and its frame where it has one
     keys.times = time_columns::as_given;
-    keys.all_frames = true;
-    keys.any_time = false;
-    keys.counted = true;
+    keys.any_frame = true;
     write_options w;
     w.representation = rep::rotvec;
-    const std::vector<table_row> counted_rows = {{{0.5, 12.0, quat{}, std::nullopt}, false}};
-    const auto first_line = [&](format f, const table_info& info) {
-        const std::string text = write(f, info, w, info.counted ? counted_rows : rows);
+    const auto first_line = [&](format f, const table_info& info, const std::vector<table_row>& table) {
+        const std::string text = write(f, info, w, table);
         return text.substr(0, text.find('\n'));
     };
-    for (format f : {format::csv, format::ndjson}) {
-        CAPTURE(to_string(f));
-        const std::string plain = f == format::csv ? "frame,time,rx,ry,rz" : "{\"frame\": 12, \"time\": 0.5, \"rotvec\": [0, 0, 0]}";
-        const std::string line = f == format::csv ? "# keyrot {{{}}}" : "{{{}}}";
-        w.angles = angle_unit::degrees;
-        CHECK(first_line(f, frames) == plain);
-        CHECK(first_line(f, keys) == fmt::format(fmt::runtime(line), "\"fps\": 30"));
-        w.angles = angle_unit::radians;
-        CHECK(first_line(f, frames) == fmt::format(fmt::runtime(line), "\"angles\": \"radians\""));
-        w.states = settings_line::always;
-        CHECK(first_line(f, frames) == fmt::format(fmt::runtime(line), "\"fps\": 30, \"method\": \"slerp\", \"rep\": \"rotvec\", \"angles\": \"radians\""));
-        w.states = settings_line::never;
-        CHECK(first_line(f, keys) == (f == format::csv ? "frame,rx,ry,rz" : "{\"frame\": 12, \"rotvec\": [0, 0, 0]}"));
-        w.states = settings_line::needed;
-    }
-    // quaternion arrays in xyzw order: NDJSON says so, CSV names its columns
-    w.angles = angle_unit::radians;  // (no angles in a quaternion)
-    w.representation = rep::quat;
-    w.order = quat_order::xyzw;
-    CHECK(first_line(format::csv, frames) == "frame,time,qx,qy,qz,qw");
-    CHECK(first_line(format::ndjson, frames) == "{\"quat_order\": \"xyzw\"}");
-    // an Euler sequence is never needed: read without one, it is refused
+    const auto first = [&](format f, const table_info& info) { return first_line(f, info, rows); };
+    // degrees, the default: plain names; a time on every row, frames or keys
+    CHECK(first(format::csv, frames) == "frame,time,rx,ry,rz");
+    CHECK(first(format::csv, keys) == "frame,time,rx,ry,rz");
+    CHECK(first(format::ndjson, keys) == R"({"frame": 12, "time": 0.5, "rotvec": [0, 0, 0]})");
+    // a key of a time alone beside keys of frames: an empty frame cell, no frame member
+    const std::vector<table_row> timed = {{{0.25, std::nullopt, quat{}, std::nullopt}}};
+    CHECK(write(format::csv, keys, w, timed) == "frame,time,rx,ry,rz\n,0.25,0,0,0\n");
+    CHECK(first_line(format::ndjson, keys, timed) == R"({"time": 0.25, "rotvec": [0, 0, 0]})");
+    // radians: in the names of the angles' columns and members, velocities' too
+    w.angles = angle_unit::radians;
+    CHECK(first(format::csv, frames) == "frame,time,rx_rad,ry_rad,rz_rad");
+    CHECK(first(format::ndjson, frames) == R"({"frame": 12, "time": 0.5, "rotvec_rad": [0, 0, 0]})");
+    w.representation = rep::axis_angle;
+    table_info rated = frames;
+    rated.velocity = rated.acceleration = true;
+    CHECK(first(format::csv, rated) == "frame,time,ax,ay,az,angle_rad,wx_rad,wy_rad,wz_rad,dwx_rad,dwy_rad,dwz_rad");
+    CHECK(first(format::ndjson, frames) == R"({"frame": 12, "time": 0.5, "axis": [1, 0, 0], "angle_rad": 0})");
     w.representation = rep::euler;
     w.euler = parse_euler_seq("ZYX");
-    w.angles = angle_unit::degrees;
-    CHECK(first_line(format::ndjson, frames).starts_with("{\"frame\": 12"));
-    // a JSON document states everything, as fields
-    CHECK(first_line(format::json, frames) ==
-          "{\"fps\": 30, \"method\": \"slerp\", \"rep\": \"euler\", \"angles\": \"degrees\", \"euler\": \"ZYX\", \"frames\": [");
+    CHECK(first(format::csv, frames) == "frame,time,e1_rad,e2_rad,e3_rad");
+    CHECK(first(format::ndjson, frames) == R"({"frame": 12, "time": 0.5, "euler_rad": [0, 0, 0]})");
+    // a JSON document states them as its fields, and keeps the plain names
+    CHECK(write(format::json, frames, w, rows) ==
+          "{\"fps\": 30, \"method\": \"slerp\", \"rep\": \"euler\", \"angles\": \"radians\", \"euler\": \"ZYX\", \"frames\": [\n"
+          "{\"frame\": 12, \"time\": 0.5, \"euler\": [0, 0, 0]}]}\n");
+    // quaternion arrays in xyzw order: NDJSON says so in the name, CSV names its columns
+    w.representation = rep::quat;
+    w.order = quat_order::xyzw;
+    CHECK(first(format::csv, frames) == "frame,time,qx,qy,qz,qw");
+    CHECK(first(format::ndjson, frames) == R"({"frame": 12, "time": 0.5, "quat_xyzw": [0, 0, 0, 1]})");
+    // the settings line only when asked, with every setting
+    w.states = settings_line::always;
+    CHECK(first(format::csv, frames) ==
+          R"(# keyrot {"fps": 30, "method": "slerp", "rep": "quat", "angles": "radians", "quat_order": "xyzw"})");
+    CHECK(first(format::ndjson, frames) ==
+          R"({"fps": 30, "method": "slerp", "rep": "quat", "angles": "radians", "quat_order": "xyzw"})");
+}
+
+TEST_CASE("the names that state a unit or an order read back as they say") {
+    const double s = std::sqrt(0.5);
+    read_options o;
+    o.settings.euler = parse_euler_seq("ZYX");
+    const auto only_key = [&](std::string_view text, format f) { return read(std::string(text), f, o).tracks.at(0).keys.at(0); };
+    const quat quarter_z{s, 0, 0, s};
+    for (const auto& [text, f] : std::vector<std::pair<std::string, format>>{
+             {"time,ax,ay,az,angle_rad\n0,0,0,1,1.5707963267948966\n", format::csv},
+             {"time,rx_deg,ry_deg,rz_deg\n0,0,0,90\n", format::csv},
+             {"time,e1_rad,e2_rad,e3_rad\n0,1.5707963267948966,0,0\n", format::csv},
+             {R"({"time": 0, "axis": [0, 0, 1], "angle_rad": 1.5707963267948966})", format::ndjson},
+             {R"({"time": 0, "euler_rad": [1.5707963267948966, 0, 0]})", format::ndjson},
+             {R"({"time": 0, "quat_xyzw": [0, 0, 0.7071067811865476, 0.7071067811865476]})", format::ndjson},
+             {R"({"keys": [{"time": 0, "rotvec_rad": [0, 0, 1.5707963267948966]}]})", format::json}}) {
+        CAPTURE(text);
+        CHECK(keyrot::test::same_rotation(only_key(text, f).rotation, quarter_z, 1e-15));
+    }
+    // a unit stated by one angle's name is stated by all, and one unit at that
+    for (const auto& [text, f] : std::vector<std::pair<std::string, format>>{
+             {"time,ax,ay,az,angle_rad,wx,wy,wz\n0,0,0,1,1,0,0,0\n", format::csv},
+             {"time,ax,ay,az,angle_rad,wx_deg,wy_deg,wz_deg\n0,0,0,1,1,0,0,0\n", format::csv},
+             {R"({"time": 0, "axis": [0, 0, 1], "angle_rad": 1, "angular_velocity": [0, 0, 0]})", format::ndjson},
+             {R"({"time": 0, "quat": [1, 0, 0, 0], "quat_xyzw": [0, 0, 0, 1]})", format::ndjson}}) {
+        CAPTURE(text);
+        CHECK_THROWS_AS(only_key(text, f), input_error);
+    }
 }
 
 TEST_CASE("keyrot reads what it writes, in every format and representation") {

@@ -244,6 +244,7 @@ public:
         settings_ = ro.settings;
         settings_.angles = angle_unit::degrees;
         settings_.key_fps = header_.fps;
+        settings_.key_fps_given = false;
         settings_.interpolation = std::nullopt;
     }
 

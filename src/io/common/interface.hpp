@@ -27,11 +27,9 @@ struct read_options {
     std::string source;      ///< file name for messages, "<stdin>" for stdin
     key_settings settings;   ///< from the flags; a document's own settings override them
     quat_order order = quat_order::wxyz;
-    /// Which settings the user gave as flags (not defaults): a document
-    /// that states otherwise wins, with a warning.
-    struct {
-        bool angles = false, order = false;
-    } given;
+    /// The user gave --quat-order (not the default): a document that states
+    /// otherwise wins, with a warning (as for the unit: key_settings::angles_given).
+    bool order_given = false;
     /// Most bytes a JSON document or a glTF file read whole may take, and a
     /// line of CSV, NDJSON or BVH: endless input (/dev/zero) ends in an
     /// error, not in all memory.
@@ -86,7 +84,7 @@ public:
 /// Frame / key time columns of a table.
 enum class time_columns {
     frame_and_time,  ///< resample: both
-    as_given,        ///< convert: JSON writes each key's own; CSV `frame` if all keys have one, `time` if any has one
+    as_given,        ///< convert: `time`, and `frame` beside it where keys have one
     time_only,       ///< slerp: the parameter, under time_name
 };
 
@@ -95,12 +93,10 @@ struct table_info {
     bool named = false;  ///< write track names
     channels carried;    ///< the channels some track carries
     time_columns times = time_columns::frame_and_time;
-    bool all_frames = false;  ///< as_given: every row has a frame
-    bool any_time = true;     ///< as_given: some row has a time
-    bool counted = false;     ///< as_given: some row has a frame and no time (the frame rate times it)
+    bool any_frame = false;  ///< as_given: some row has a frame
     std::string_view time_name = "time";
     std::string_view rows_name = "frames";  ///< JSON: "frames", or "keys" for convert
-    std::optional<double> fps;              ///< the rate `frame` counts at, when rows have frames
+    std::optional<double> fps;              ///< the rate `frame` counts at, where rows have frames at one rate
     std::optional<std::string_view> method;  ///< the interpolation's name, for a resampled table
     bool velocity = false, acceleration = false;  ///< rows may carry them (frame_rates)
     bool operator==(const table_info&) const = default;
@@ -109,7 +105,6 @@ struct table_info {
 /// One output row: a sample (a resampled frame, or a key as it is), and
 /// what only the writers need of it.
 struct table_row : sample {
-    bool has_time = true;  ///< convert: the key gave a time (JSON writes "time" only then, if it has a frame)
     /// Euler output with --euler-continuous: the angles to write (radians),
     /// where `continuous`. (A flag and an array rather than an optional:
     /// rows a whole number of cache lines long made the formatting threads

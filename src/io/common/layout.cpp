@@ -1,5 +1,7 @@
 #include "io/common/layout.hpp"
 
+#include <algorithm>
+
 namespace keyrot {
 namespace {
 
@@ -17,6 +19,28 @@ constexpr std::array<std::string_view, 9> matrix_cols = {"m00", "m01", "m02", "m
 }  // namespace
 
 std::string weight_column(std::size_t i) { return "w" + std::to_string(i); }
+
+std::string_view unit_suffix(angle_unit u) noexcept { return u == angle_unit::radians ? "_rad" : ""; }
+
+std::pair<std::string_view, std::optional<angle_unit>> split_unit(std::string_view name) noexcept {
+    if (name.ends_with("_rad")) return {name.substr(0, name.size() - 4), angle_unit::radians};
+    if (name.ends_with("_deg")) return {name.substr(0, name.size() - 4), angle_unit::degrees};
+    return {name, std::nullopt};
+}
+
+bool is_angle_column(std::string_view name) noexcept {
+    const auto in = [name](const auto& columns) {
+        return std::find(columns.begin(), columns.end(), name) != columns.end();
+    };
+    return name == axis_angle_cols.back() || in(rotvec_cols) || in(euler_cols) || in(velocity_columns) ||
+           in(acceleration_columns);
+}
+
+std::string column_in(std::string_view name, angle_unit u) {
+    std::string out(name);
+    if (is_angle_column(name)) out += unit_suffix(u);
+    return out;
+}
 
 std::span<const std::string_view> rotation_columns(rep r, quat_order order) noexcept {
     switch (r) {

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "io/common/output.hpp"
 #include "keyrot/convert.hpp"
@@ -32,19 +33,33 @@ inline constexpr std::string_view velocity_member = "angular_velocity", accelera
 /// The CSV column of morph weight `i`: "w0", "w1", ...
 std::string weight_column(std::size_t i);
 
+/// A column or member that holds angles may say their unit in its name:
+/// "angle_rad", "e1_rad", "wx_rad" are radians (per second, for an angular
+/// velocity), "angle_deg" degrees. keyrot writes the suffix where its angles
+/// are radians, and plain names for degrees, the default.
+std::string_view unit_suffix(angle_unit u) noexcept;
+/// `name` without its unit suffix, and the unit it states: ("angle",
+/// radians) for "angle_rad", (name, none) for a name without one.
+std::pair<std::string_view, std::optional<angle_unit>> split_unit(std::string_view name) noexcept;
+/// Whether the CSV column `name` (without a unit) holds an angle:
+/// axis-angle's angle, the components of a rotation vector, of Euler
+/// angles, of an angular velocity and acceleration.
+bool is_angle_column(std::string_view name) noexcept;
+/// The CSV column `name` as written in angles of `u`: "angle_rad".
+std::string column_in(std::string_view name, angle_unit u);
+
 /// Reorder 4 values between file order and (w, x, y, z).
 std::array<double, 4> from_quat_order(std::array<double, 4> v, quat_order order) noexcept;
 
-/// When a CSV or NDJSON output states its settings in a line of their own
-/// (a leading "# keyrot {...}" comment, an NDJSON header object), which
-/// other readers of the format take for a row: when keyrot, reading the
-/// output back with no flags, would otherwise misread it (needed), always,
-/// or never (--settings-line). A JSON document always states them, as
-/// fields.
-enum class settings_line { needed, always, never };
+/// Whether a CSV or NDJSON output begins with a line of its settings (a
+/// "# keyrot {...}" comment, an NDJSON header object), which other readers
+/// of the format take for a row: never by default, since the columns'
+/// names say what keyrot needs to read the rows back; always on request
+/// (--settings-line). A JSON document always states them, as fields.
+enum class settings_line { never, always };
 template <>
-inline constexpr std::array<enum_name<settings_line>, 3> names_of<settings_line> = {
-    {{settings_line::needed, "needed"}, {settings_line::always, "always"}, {settings_line::never, "never"}}};
+inline constexpr std::array<enum_name<settings_line>, 2> names_of<settings_line> = {
+    {{settings_line::never, "never"}, {settings_line::always, "always"}}};
 
 struct write_options {
     rep representation = rep::axis_angle;
@@ -60,7 +75,7 @@ struct write_options {
     bool euler_continuous = false;
     /// glTF output: LINEAR and STEP rotations as normalised 16-bit integers (--compact).
     bool compact_rotations = false;
-    settings_line states = settings_line::needed;
+    settings_line states = settings_line::never;
     /// How an output file is put in place (--fsync).
     commit_mode commit;
 };

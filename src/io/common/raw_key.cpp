@@ -24,14 +24,14 @@ quat unit_quaternion(const raw_key& k, const key_settings& s, warnings& warn, bo
     return normalized(q, n);
 }
 
-quat axis_angle_rotation(const raw_key& k, const key_settings& s, const std::string& source) {
+quat axis_angle_rotation(const raw_key& k, angle_unit unit, const std::string& source) {
     const auto& v = k.values;
     const vec3 axis{v[0], v[1], v[2]};
     if (norm(axis) == 0) {
         if (v[3] != 0) throw input_error(where(source, k.at), "axis is zero: expected a non-zero axis for a non-zero angle");
         return {};
     }
-    return from_axis_angle(axis, v[3], s.angles);
+    return from_axis_angle(axis, v[3], unit);
 }
 
 quat matrix_rotation(const raw_key& k, const std::string& source) {
@@ -70,6 +70,11 @@ quat matrix_rotation(const raw_key& k, const std::string& source) {
 
 key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     const std::string& source = warn.source();
+    // A unit the key's names state describes the file, over the flags'.
+    const angle_unit unit = k.angles.value_or(s.angles);
+    if (unit != s.angles && s.angles_given)
+        warn.once("conflict angles",
+                  fmt::format("the file's angles in {}, as its names say, are used, not --radians", to_string(unit)));
     key out;
     out.at.line = k.at.line;
     if (!k.at.path.empty()) out.at.path = k.at.path;  // (a line's key has none: most keys copy no text)
@@ -79,18 +84,22 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     if (!k.weights.empty()) out.weights = k.weights;
     const auto radians = [&](const std::optional<vec3>& v) -> std::optional<vec3> {
         if (!v) return std::nullopt;
-        return vec3{to_radians(v->x, s.angles), to_radians(v->y, s.angles), to_radians(v->z, s.angles)};
+        return vec3{to_radians(v->x, unit), to_radians(v->y, unit), to_radians(v->z, unit)};
     };
     if (k.rates.any())
         out.rates = std::make_shared<const frame_rates>(
             frame_rates{radians(k.rates.velocity), radians(k.rates.acceleration)});
     if (k.spline) out.spline = std::make_shared<const full_spline_key>(*k.spline);
     // A row with both is a frame of keyrot's own output, at whatever rate it
-    // was made: its time times it, its frame is kept as a label (compare
-    // matches by it).
+    // was made, or a table's row: its time times it, its frame is kept as a
+    // label (compare matches by it); but a --key-fps typed times the frame.
     out.frame = k.frame;
     out.has_time = k.time.has_value();
-    out.time = k.time ? *k.time : *k.frame / s.frame_rate();
+    out.time = k.time && !(k.frame && s.key_fps_given) ? *k.time : *k.frame / s.frame_rate();
+    if (k.time && std::fabs(out.time - *k.time) > tol::match_time)
+        warn.once("key rate", fmt::format("frame {} is {} s at --key-fps {}, where the file says {} s: frames are "
+                                          "timed at --key-fps ({})",
+                                          *k.frame, out.time, s.frame_rate(), *k.time, where(source, k.at)));
     if (!k.unknown.empty()) unknown_field(k.unknown, where(source, k.at), s, warn);
     const auto& v = k.values;
     switch (k.kind) {
@@ -102,15 +111,15 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
                 out.given_quat = given;
             break;
         }
-        case rep::axis_angle: out.rotation = axis_angle_rotation(k, s, source); break;
+        case rep::axis_angle: out.rotation = axis_angle_rotation(k, unit, source); break;
         case rep::rotvec:
-            out.rotation = from_rotvec({v[0], v[1], v[2]}, s.angles);
+            out.rotation = from_rotvec({v[0], v[1], v[2]}, unit);
             break;
         case rep::euler: {
             if (!s.euler)
                 throw input_error(where(source, k.at), "Euler angles need a sequence: expected --euler SEQ or an \"euler\" field");
-            out.euler = {to_radians(v[0], s.angles), to_radians(v[1], s.angles), to_radians(v[2], s.angles)};
-            out.rotation = from_euler({v[0], v[1], v[2]}, *s.euler, s.angles);
+            out.euler = {to_radians(v[0], unit), to_radians(v[1], unit), to_radians(v[2], unit)};
+            out.rotation = from_euler({v[0], v[1], v[2]}, *s.euler, unit);
             break;
         }
         case rep::matrix:
@@ -125,7 +134,7 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     }
     if (!std::isfinite(out.time))
         throw input_error(where(source, k.at), fmt::format("time {} is out of range: expected a finite time", out.time));
-    if (s.angles == angle_unit::radians && (k.kind == rep::axis_angle || k.kind == rep::rotvec)) {
+    if (unit == angle_unit::radians && (k.kind == rep::axis_angle || k.kind == rep::rotvec)) {
         // An angle of more than two turns is no one's radians: degrees, read as radians.
         const double angle = k.kind == rep::axis_angle ? std::fabs(v[3]) : norm(vec3{v[0], v[1], v[2]});
         if (angle > 4 * std::numbers::pi)

@@ -23,6 +23,9 @@ struct raw_key {
     std::optional<vec3> translation, scale;
     morph_weights weights;
     frame_rates rates;  ///< in the file's angle unit per second
+    /// The unit the key's own names state (a column "angle_rad", a member
+    /// "euler_rad"), over the settings'.
+    std::optional<angle_unit> angles;
     std::string unknown;  ///< a JSON key's first field that keyrot does not read, if any
     std::optional<full_spline_key> spline;  ///< glTF CUBICSPLINE keys only
 
@@ -38,6 +41,7 @@ struct raw_key {
         translation.reset(), scale.reset();
         weights.clear();
         rates = {};
+        angles.reset();
         unknown.clear();
         spline.reset();
     }
@@ -46,10 +50,16 @@ struct raw_key {
 /// Settings that describe a document (flags, overridden by its own fields).
 struct key_settings {
     angle_unit angles = angle_unit::degrees;
+    /// The unit was typed (--radians): a file that states another gets one warning.
+    bool angles_given = false;
     std::optional<euler_seq> euler;
     /// The rate frame numbers count at, where the file or the user states
     /// one; none: default_key_fps, assumed (and never written as stated).
     std::optional<double> key_fps;
+    /// key_fps is the user's --key-fps, which no file's own rate overrides:
+    /// it times every frame number, also beside a time that says otherwise
+    /// (what an earlier command wrote from a rate it only assumed).
+    bool key_fps_given = false;
     bool strict = false;
     std::optional<track_interpolation> interpolation = std::nullopt;  ///< a glTF track's own
     double frame_rate() const { return key_fps.value_or(default_key_fps); }

@@ -29,18 +29,11 @@ rotation_values row_values(const table_row& s, const write_options& opts, warnin
 /// angle unit per second.
 vec3 rate_values(vec3 radians, const write_options& opts);
 
-/// What an output of format `f` states about itself, as the members of a
-/// JSON object: a JSON document's first fields, an NDJSON header line, a
-/// CSV "# keyrot" line. With settings_line::always (a JSON document's), all
-/// that describe it:
+/// The settings an output was written with, as the members of a JSON
+/// object: a JSON document's first fields, and with --settings-line always
+/// an NDJSON header line or a CSV "# keyrot" line:
 /// `"fps": 24, "method": "slerp", "rep": "quat", "angles": "degrees", "quat_order": "wxyz"`
-/// (fps and method when known, euler and quat_order where the rep has
-/// them); with needed, only what keyrot, reading the rows back with no
-/// flags, would otherwise misread without a word: the rate of frame
-/// numbers without times when it is not default_key_fps, angles in
-/// radians, the order of NDJSON's quaternion arrays when it is not wxyz
-/// (an Euler sequence has no default: read without one, it is refused,
-/// naming --euler). Empty with never, or when nothing is needed.
-std::string settings_members(const table_info& info, const write_options& opts, settings_line which, format f);
+/// (fps and method when known, euler and quat_order where the rep has them).
+std::string settings_members(const table_info& info, const write_options& opts);
 
 }  // namespace keyrot

@@ -7,19 +7,17 @@
 #include <charconv>
 #include <cmath>
 #include <deque>
-#include <map>
 #include <optional>
 #include <utility>
 
 #include "ground/text.hpp"
+#include "io/common/columns.hpp"
 #include "io/common/line_reader.hpp"
 #include "io/json/flat_json.hpp"
 #include "io/json/json_keys.hpp"
 
 namespace keyrot {
 namespace {
-
-constexpr std::array<std::string_view, 7> matrix4_only = {"m03", "m13", "m23", "m30", "m31", "m32", "m33"};
 
 /// The cells of one line, as views into the line (or, for a line with
 /// quotes, into unquoted copies). "..." quotes a cell, "" inside is a quote.
@@ -84,25 +82,12 @@ private:
 constexpr std::size_t max_plain_cells = 24;
 
 /// Where each known column is, resolved once from the header.
-struct columns {
+struct columns : column_layout {
     /// ',' or ';': a semicolon-separated table, whose numbers may have a
     /// decimal comma (what a spreadsheet saves as CSV in many locales).
     char separator = ',';
-    std::size_t count = 0;
     bool plain = false;  // no ignored columns, at most max_plain_cells: rows for csv_rows::read_plain
-    std::optional<std::size_t> track, time, frame;
-    rep kind = rep::quat;
-    std::vector<std::size_t> rotation;  // in (w, x, y, z) order for quaternions
-    std::optional<std::array<std::size_t, 3>> translation, scale;
-    std::vector<std::size_t> weights;  // w0, w1, ...
-    std::optional<std::array<std::size_t, 3>> velocity, acceleration;
 };
-
-std::string column_list(rep r) {
-    const auto cols = rotation_columns(r, quat_order::wxyz);
-    if (r == rep::matrix || r == rep::matrix4) return fmt::format("{}..{}", cols.front(), cols.back());
-    return fmt::format("{}", fmt::join(cols, " "));
-}
 
 /// The separator of a table whose header is `line`: ';' where the header
 /// has semicolons and no commas (no column name keyrot reads has either).
@@ -126,83 +111,12 @@ columns parse_header(const std::vector<std::string_view>& cells, char separator,
         throw input_error(where, fmt::format("expected commas (or semicolons) between the columns, got '{}'",
                                              trim(cells[0]).substr(0, 40)));
     columns cols;
+    static_cast<column_layout&>(cols) = layout_of(cells, where);
     cols.separator = separator;
-    cols.count = cells.size();
-    std::map<std::string, std::size_t> index;
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-        const std::string name = ascii_lower(trim(cells[i]));
-        if (name.empty()) continue;  // pandas' to_csv writes its index so; ignored as unknown columns are
-        if (!index.emplace(name, i).second)
-            throw input_error(where, fmt::format("column '{}' appears twice: expected each column once", name));
-    }
-    auto find = [&index](std::string_view name) -> std::optional<std::size_t> {
-        const auto it = index.find(std::string(name));
-        if (it == index.end()) return std::nullopt;
-        return it->second;
-    };
-    std::vector<bool> known(cells.size(), false);
-    auto claim = [&](std::string_view name) {
-        auto at = find(name);
-        if (at) known[*at] = true;
-        return at;
-    };
-    cols.track = claim("track");
-    cols.time = claim("time");
-    if (!cols.time) cols.time = claim("t");  // slerp's tables
-    cols.frame = claim("frame");
-    if (!cols.time && !cols.frame) throw input_error(where, "no time column: expected a 'time' or 'frame' column");
-
-    // The representation: the one whose columns appear. The 3x3 matrix
-    // columns are also part of the 4x4 ones, so matrix4 is chosen by the
-    // columns only it has.
-    const bool four = std::any_of(matrix4_only.begin(), matrix4_only.end(), [&](auto n) { return find(n).has_value(); });
-    std::optional<rep> found;
-    for (rep r : {rep::quat, rep::axis_angle, rep::rotvec, rep::euler, four ? rep::matrix4 : rep::matrix}) {
-        const auto names = rotation_columns(r, quat_order::wxyz);
-        if (std::none_of(names.begin(), names.end(), [&](auto n) { return find(n).has_value(); })) continue;
-        if (found)
-            throw input_error(where, fmt::format("columns of two rotation representations ({} and {}): expected one",
-                                                 to_string(*found), to_string(r)));
-        for (auto n : names)
-            if (!find(n))
-                throw input_error(where, fmt::format("missing column '{}': {} needs {}", n, to_string(r), column_list(r)));
-        found = r;
-        for (auto n : names) cols.rotation.push_back(*claim(n));
-    }
-    if (!found)
-        throw input_error(where, fmt::format("no rotation columns: expected {}, {}, {}, {} or {}", column_list(rep::quat),
-                                             column_list(rep::axis_angle), column_list(rep::rotvec),
-                                             column_list(rep::euler), column_list(rep::matrix)));
-    cols.kind = *found;
-
-    const auto vector_columns = [&](const auto& names, std::string_view what) {
-        std::optional<std::array<std::size_t, 3>> at;
-        const auto x = claim(names[0]), y = claim(names[1]), z = claim(names[2]);
-        if (!x && !y && !z) return at;
-        if (!(x && y && z)) throw input_error(where, fmt::format("{} needs all of the columns {}", what, fmt::join(names, " ")));
-        return at = std::array<std::size_t, 3>{*x, *y, *z};
-    };
-    cols.translation = vector_columns(translation_columns, "translation");
-    if (cols.translation && cols.kind == rep::matrix4)
-        throw input_error(where, "4x4 matrix and tx ty tz columns: expected one translation per key");
-    cols.scale = vector_columns(scale_columns, "scale");
-    cols.velocity = vector_columns(velocity_columns, "angular velocity");
-    cols.acceleration = vector_columns(acceleration_columns, "angular acceleration");
-    for (std::size_t n = 0; n < index.size(); ++n) {  // w0 ... wN-1, one after another
-        const auto at = claim(weight_column(n));
-        if (!at) break;
-        cols.weights.push_back(*at);
-    }
-    for (const auto& [name, at] : index)
-        if (!known[at] && name.size() > 1 && name[0] == 'w' &&
-            name.find_first_not_of("0123456789", 1) == std::string::npos)
-            throw input_error(where, fmt::format("column '{}' without '{}': expected the morph weights' columns w0 to "
-                                                 "wN-1, each once",
-                                                 name, weight_column(cols.weights.size())));
     cols.plain = separator == ',' && cols.count <= max_plain_cells &&
-                 std::all_of(known.begin(), known.end(), [](bool k) { return k; });
+                 std::all_of(cols.known.begin(), cols.known.end(), [](bool k) { return k; });
     for (std::size_t i = 0; i < cells.size(); ++i)
-        if (!known[i])
+        if (!cols.known[i])
             warn.once("column", trim(cells[i]).empty() ? fmt::format("ignoring unnamed column {}", i + 1)
                                                        : fmt::format("ignoring unknown column '{}'", trim(cells[i])));
     return cols;
@@ -220,6 +134,27 @@ bool skipped(std::string_view line, const std::string& source, std::size_t numbe
     return false;
 }
 
+/// A row's cells as read_row reads them.
+struct csv_cells {
+    const std::vector<std::string_view>& cells;
+    const cell_splitter& splitter;
+    char separator;
+    const std::string& source;
+    std::size_t line;
+
+    bool empty(std::size_t at) const { return empty_cell(cells, at); }
+    double number(std::size_t at, std::string_view name) const {
+        if (auto v = parse_cell_number(cells[at], separator)) return *v;
+        fail(fmt::format("column '{}': expected a finite number, got '{}'", name, trim(cells[at]).substr(0, 40)));
+    }
+    std::string text(std::size_t at) const {
+        std::string name(splitter.text(at));
+        if (!name.empty()) check_track_name(name, where(source, line));
+        return name;
+    }
+    [[noreturn]] void fail(const std::string& message) const { throw input_error(where(source, line), message); }
+};
+
 /// The keys on the rows of a table whose header is read: each row apart
 /// from the others, so that copies on several threads can share the rows
 /// (read_ahead).
@@ -233,50 +168,12 @@ public:
         const std::size_t line_no = place.line;
         if (read_plain(line, line_no, track, k)) return true;
         if (skipped(line, source_, line_no)) return false;
-        const auto where = [&] { return keyrot::where(source_, line_no); };
         const auto& cells = splitter_.split(line, source_, line_no);
+        const csv_cells row{cells, splitter_, cols_.separator, source_, line_no};
         if (cells.size() != cols_.count)
-            throw input_error(where(), fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
-        const auto number = [&](std::size_t at, std::string_view name) {
-            if (auto v = parse_cell_number(cells[at], cols_.separator)) return *v;
-            throw input_error(where(), fmt::format("column '{}': expected a finite number, got '{}'", name,
-                                                   trim(cells[at]).substr(0, 40)));
-        };
+            row.fail(fmt::format("expected {} cells as in the header, got {}", cols_.count, cells.size()));
         new_key(k, line_no);
-        if (cols_.time && !(cols_.frame && empty_cell(cells, *cols_.time))) k.time = number(*cols_.time, "time");
-        if (cols_.frame && !(cols_.time && empty_cell(cells, *cols_.frame))) k.frame = number(*cols_.frame, "frame");
-        if (!k.time && !k.frame) throw input_error(where(), "no time: expected a 'time' or a 'frame'");
-        const auto names = rotation_columns(cols_.kind, quat_order::wxyz);
-        for (std::size_t i = 0; i < cols_.rotation.size(); ++i) k.values[i] = number(cols_.rotation[i], names[i]);
-        const auto vector = [&](const std::optional<std::array<std::size_t, 3>>& at, const auto& column) {
-            std::optional<vec3> v;
-            if (!at) return v;
-            const auto& c = *at;
-            const int empty = empty_cell(cells, c[0]) + empty_cell(cells, c[1]) + empty_cell(cells, c[2]);
-            if (empty == 0) v = vec3{number(c[0], column[0]), number(c[1], column[1]), number(c[2], column[2])};
-            else if (empty != 3)
-                throw input_error(where(), fmt::format("columns {}: expected three numbers or three empty cells",
-                                                       fmt::join(column, " ")));
-            return v;
-        };
-        k.translation = vector(cols_.translation, translation_columns);
-        k.scale = vector(cols_.scale, scale_columns);
-        k.rates = {vector(cols_.velocity, velocity_columns), vector(cols_.acceleration, acceleration_columns)};
-        // A track with fewer morph targets than the table's columns leaves the last of them empty.
-        for (std::size_t i = 0; i < cols_.weights.size(); ++i) {
-            if (empty_cell(cells, cols_.weights[i])) continue;
-            if (k.weights.size() != i)
-                throw input_error(where(), fmt::format("column '{}' after an empty '{}': expected the weights as "
-                                                       "numbers from w0 on, and the columns after them empty",
-                                                       weight_column(i), weight_column(k.weights.size())));
-            k.weights.push_back(number(cols_.weights[i], weight_column(i)));
-        }
-        track.clear();
-        if (cols_.track) {
-            track = splitter_.text(*cols_.track);
-            if (track.empty()) throw input_error(where(), "column 'track': expected a track name, got an empty cell");
-            check_track_name(track, where());
-        }
+        read_row(cols_, row, track, k);
         return true;
     }
 
@@ -331,6 +228,7 @@ private:
         k.reset();
         k.at.line = line_no;
         k.kind = cols_.kind;
+        k.angles = cols_.angles;
     }
 
     columns cols_;
@@ -413,7 +311,7 @@ private:
             throw input_error(where, fmt::format("expected a JSON object of settings after '{}'", trim(csv_settings_comment)));
         // CSV names its quaternion columns: an order stated or typed changes nothing.
         read_options ignoring_order = opts;
-        ignoring_order.given.order = false;
+        ignoring_order.order_given = false;
         quat_order order = opts.order;
         detail::apply_fields(settings.root(), settings_, order, where, detail::settings_object::header, ignoring_order,
                              warn);

@@ -29,34 +29,33 @@ class csv_writer final : public table_writer {
 public:
     csv_writer(std::string& out, const table_info& info, const write_options& opts, warnings& warn)
         : out_(out), info_(info), opts_(opts), warn_(warn) {
-        frame_ = info.times == time_columns::frame_and_time || (info.times == time_columns::as_given && info.all_frames);
-        time_ = info.times != time_columns::as_given || !info.all_frames || info.any_time;
+        frame_ = info.times == time_columns::frame_and_time || (info.times == time_columns::as_given && info.any_frame);
         translation_ = info.carried.translation && opts.representation != rep::matrix4;
         scale_ = info.carried.scale;
         weights_ = info.carried.weights;
         std::vector<std::string> header;
         if (info.named) header.emplace_back("track");
         if (frame_) header.emplace_back("frame");
-        if (time_) header.emplace_back(info.time_name);
-        for (auto c : rotation_columns(opts.representation, opts.order)) header.emplace_back(c);
+        header.emplace_back(info.time_name);
+        for (auto c : rotation_columns(opts.representation, opts.order)) header.push_back(column_in(c, opts.angles));
         if (translation_)
             for (auto c : translation_columns) header.emplace_back(c);
         if (scale_)
             for (auto c : scale_columns) header.emplace_back(c);
         for (std::size_t i = 0; i < weights_; ++i) header.push_back(weight_column(i));
         if (info.velocity)
-            for (auto c : velocity_columns) header.emplace_back(c);
+            for (auto c : velocity_columns) header.push_back(column_in(c, opts.angles));
         if (info.acceleration)
-            for (auto c : acceleration_columns) header.emplace_back(c);
-        // The settings line only where it is needed: other CSV readers take it for the header.
-        const std::string settings = settings_members(info, opts, opts.states, format::csv);
-        if (!settings.empty()) fmt::format_to(std::back_inserter(out_), "{}{{{}}}\n", csv_settings_comment, settings);
+            for (auto c : acceleration_columns) header.push_back(column_in(c, opts.angles));
+        // Only when asked: other CSV readers take the line for the header.
+        if (opts.states == settings_line::always)
+            fmt::format_to(std::back_inserter(out_), "{}{{{}}}\n", csv_settings_comment, settings_members(info, opts));
         fmt::format_to(std::back_inserter(out_), "{}\n", fmt::join(header, ","));
     }
 
     csv_writer(const csv_writer& other, std::string& out)
         : out_(out), info_(other.info_), opts_(other.opts_), warn_(other.warn_), name_(other.name_),
-          frame_(other.frame_), time_(other.time_), translation_(other.translation_), scale_(other.scale_),
+          frame_(other.frame_), translation_(other.translation_), scale_(other.scale_),
           weights_(other.weights_) {}
 
     std::unique_ptr<table_writer> row_writer(std::string& out) const override {
@@ -75,8 +74,11 @@ public:
             text.number(v, precision);
         };
         // --precision rounds values, never when they are: times read back as they were.
-        if (frame_) cell(*s.frame, std::nullopt);
-        if (time_) cell(s.time, std::nullopt);
+        if (frame_) {
+            if (s.frame) cell(*s.frame, std::nullopt);
+            else first = false;  // (an empty cell: a key of a time alone)
+        }
+        cell(s.time, std::nullopt);
         const rotation_values r = row_values(s, opts_, warn_);
         for (std::size_t i = 0; i < r.size; ++i) cell(r.v[i], opts_.precision);
         const auto vector = [&](const std::optional<vec3>& v) {
@@ -108,7 +110,7 @@ private:
     write_options opts_;
     warnings& warn_;
     std::string name_;
-    bool frame_ = false, time_ = false, translation_ = false, scale_ = false;
+    bool frame_ = false, translation_ = false, scale_ = false;
     std::size_t weights_ = 0;  // columns w0 ... wN-1
 };
 

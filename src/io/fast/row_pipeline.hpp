@@ -53,13 +53,13 @@ public:
     }
     void row(const table_row& s) {
         if (workers_.empty()) return inline_row(s);
-        if (alone(s) && !s.continuous) return pack(s, s.has_time);
+        if (alone(s) && !s.continuous) return pack(s);
         add_full(s);
     }
     /// A row that is a sample as it is (resample's frames).
     void frame(const sample& s) {
         if (workers_.empty()) return inline_row(table_row{s});
-        if (alone(s)) return pack(s, true);
+        if (alone(s)) return pack(s);
         add_full(table_row{s});
     }
     void keys(const arc_keys& k) override {
@@ -78,7 +78,7 @@ public:
             arc_index_ = static_cast<std::uint32_t>(batch_.arcs.size());
             batch_.arcs.push_back(arc_);
         }
-        batch_.rows.push_back({time, frame, {}, packed_row::arc | arc_index_, true, true});
+        batch_.rows.push_back({time, frame, {}, packed_row::arc | arc_index_, true});
         if (batch_.rows.size() == batch_rows) hand_over();
     }
     void finish() {
@@ -105,11 +105,11 @@ private:
         // none; its index in batch::full (fewer than batch_rows); or a slerp
         // or squad frame, its rotation to be worked out: arc | its keys' index in batch::arcs
         std::uint32_t full;
-        bool has_frame, has_time;
+        bool has_frame;
 
         table_row unpacked() const {
             table_row r;
-            r.time = time, r.rotation = rotation, r.has_time = has_time;
+            r.time = time, r.rotation = rotation;
             if (has_frame) r.frame = frame;
             return r;
         }
@@ -148,12 +148,12 @@ private:
     /// A rotation with its time and frame alone, as nearly every row is.
     static bool alone(const sample& s) { return !s.translation && !s.scale && s.weights.empty() && !s.rates; }
     /// Such a row goes over in a third of the bytes: this thread is the one the others wait for.
-    void pack(const sample& s, bool has_time) {
-        batch_.rows.push_back({s.time, s.frame.value_or(0), s.rotation, packed_row::none, s.frame.has_value(), has_time});
+    void pack(const sample& s) {
+        batch_.rows.push_back({s.time, s.frame.value_or(0), s.rotation, packed_row::none, s.frame.has_value()});
         if (batch_.rows.size() == batch_rows) hand_over();
     }
     void add_full(const table_row& s) {
-        batch_.rows.push_back({0, 0, {}, static_cast<std::uint32_t>(batch_.full.size()), false, false});
+        batch_.rows.push_back({0, 0, {}, static_cast<std::uint32_t>(batch_.full.size()), false});
         batch_.full.push_back(s);
         batch_.full.back().spline = nullptr;  // (a table has no place for it, and it lives as long as this call)
         // The weights the row views live as long as this call: the batch keeps them (format() views them there).

@@ -52,6 +52,7 @@ public:
         kind type() const noexcept { return item().type; }
         /// As nlohmann-json's type_name(): "number", "array", ...
         std::string_view type_name() const noexcept;
+        bool is_null() const noexcept { return type() == kind::null; }
         bool is_number() const noexcept { return type() == kind::number; }
         bool is_string() const noexcept { return type() == kind::string; }
         bool is_array() const noexcept { return type() == kind::array; }

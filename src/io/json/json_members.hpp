@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <string>
 #include <string_view>
 
+#include "io/common/layout.hpp"
 #include "keyrot/convert.hpp"
 
 namespace keyrot {
@@ -26,6 +28,21 @@ constexpr std::string_view rotation_member(rep r) noexcept {
 }
 /// Axis-angle's angle, beside its axis.
 inline constexpr std::string_view angle_member = "angle";
+/// Whether a key's member holds angles, whose unit its name may say ("euler_rad").
+constexpr bool is_angle_member(std::string_view name) noexcept {
+    return name == angle_member || name == rotation_member(rep::rotvec) || name == rotation_member(rep::euler) ||
+           name == velocity_member || name == acceleration_member;
+}
+/// The quaternion's member where its array's order is named: "quat_xyzw".
+inline constexpr std::string_view quat_xyzw_member = "quat_xyzw", quat_wxyz_member = "quat_wxyz";
+/// Member `name` as an NDJSON line writes it in angles of `u` and quaternion order `o`: with the unit
+/// or order where not the default ("angle_rad", "quat_xyzw"), as a JSON document states them in its fields.
+inline std::string member_in(std::string_view name, angle_unit u, quat_order o) {
+    if (name == rotation_member(rep::quat)) return std::string(o == quat_order::xyzw ? quat_xyzw_member : name);
+    std::string out(name);
+    if (is_angle_member(name)) out += unit_suffix(u);
+    return out;
+}
 /// A key's time: seconds ("time", or "t" in slerp's tables) or a frame.
 inline constexpr std::array<std::string_view, 3> time_members = {"time", "t", "frame"};
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
 #include <array>
 #include <set>
 #include <utility>
@@ -35,6 +36,7 @@ class dom_value {
 public:
     explicit dom_value(const json& j) : j_(&j) {}
     std::string_view type_name() const { return j_->type_name(); }
+    bool is_null() const { return j_->is_null(); }
     bool is_number() const { return j_->is_number(); }
     bool is_string() const { return j_->is_string(); }
     bool is_array() const { return j_->is_array(); }
@@ -228,14 +230,12 @@ void read_track(Value j, std::string name, const std::string& path, key_settings
     apply_fields(j, settings, order, where, path.empty() ? settings_object::document : settings_object::track, opts, warn);
     std::optional<Value> keys = j;
     std::string field;
-    bool frames_doc = false;
     if (j.is_object()) {
         const auto with_keys = j.member("keys"), with_frames = j.member("frames");
         if (with_keys.has_value() == with_frames.has_value())
             throw input_error(where, with_keys ? "both 'keys' and 'frames': expected one"
                                                : "expected 'keys', 'frames' or 'tracks'");
         field = with_keys ? "keys" : "frames";
-        frames_doc = with_frames.has_value();
         keys = with_keys ? with_keys : with_frames;
     }
     const std::string keys_path = field.empty() ? path : join_path(path, field);
@@ -246,8 +246,40 @@ void read_track(Value j, std::string name, const std::string& path, key_settings
     std::size_t index = 0;
     keys->elements([&](Value key) {
         const location at{0, fmt::format("{}[{}]", keys_path, index++)};
-        sink.key(key_object_reader(key, opts.source, at, order, frames_doc).read());
+        sink.key(key_object_reader(key, opts.source, at, order).read());
     });
+}
+
+/// A bare array of keys that name their tracks, as a table's records do
+/// (pandas' to_json(orient="records") of a table with a track column):
+/// each track's keys in their order, the tracks in the order they first
+/// appear. False where the keys name no tracks.
+template <class Value>
+bool read_named_keys(Value keys, const key_settings& settings, quat_order order, const read_options& opts,
+                     raw_key_sink& sink) {
+    if (!keys.is_array() || keys.size() == 0 || !keys[0].is_object() || !keys[0].member("track")) return false;
+    std::vector<std::string> names;
+    std::map<std::string, std::vector<std::size_t>> of_track;
+    std::size_t index = 0;
+    keys.elements([&](Value key) {
+        const location at{0, fmt::format("[{}]", index)};
+        const auto track = key.is_object() ? key.member("track") : std::nullopt;
+        if (!track)
+            throw input_error(where(opts.source, at), "some keys have a 'track' and some do not: expected all or none");
+        std::string name = key_object_reader(key, opts.source, at, order).track_name(*track);
+        check_track_name(name, where(opts.source, at));
+        auto [it, added] = of_track.try_emplace(name);
+        if (added) names.push_back(name);
+        it->second.push_back(index++);
+    });
+    for (const std::string& name : names) {
+        sink.begin_track(raw_track{name, location{0, "document"}, settings});
+        for (const std::size_t i : of_track[name]) {
+            const location at{0, fmt::format("[{}]", i)};
+            sink.key(key_object_reader(keys[i], opts.source, at, order).read());
+        }
+    }
+    return true;
 }
 
 /// Returns whether the document names its tracks.
@@ -271,6 +303,7 @@ bool read_json_value(Value j, const read_options& opts, raw_key_sink& sink, warn
     }
     if (!j.is_object() && !j.is_array())
         throw input_error(opts.source, fmt::format("expected a JSON object or array, got {}", j.type_name()));
+    if (read_named_keys(j, settings, order, opts, sink)) return true;
     read_track(j, "", "", settings, order, opts, sink, warn);
     return false;
 }
@@ -348,13 +381,12 @@ private:
             throw input_error(where(), "some lines have a 'track' and some do not: expected all or none");
         }
         track.clear();
+        key_object_reader keys(j, source_, location{line_no, {}}, order_);
         if (track_field) {
-            if (!track_field->is_string())
-                throw input_error(where(), fmt::format("'track': expected a string, got {}", track_field->type_name()));
-            track = track_field->string();
+            track = keys.track_name(*track_field);
             check_track_name(track, where());
         }
-        k = key_object_reader(j, source_, location{line_no, {}}, order_, true).read();
+        k = keys.read();
     }
 
     std::string source_;

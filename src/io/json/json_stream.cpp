@@ -193,7 +193,6 @@ struct key_array {
     std::string track, path;  // path: "tracks.hip.keys", as read_json names it
     key_settings settings;
     quat_order order;
-    bool frames;  // "frames", as convert writes: keys have a frame and a time
 };
 
 /// The arrays of a document, in order, added as the reader comes to them
@@ -223,14 +222,16 @@ public:
             array_ = &arrays_->arrays[place.array];
             number_ = place.array;
         }
-        if (!key_.parse(text)) {
+        // A bare array's keys that name their tracks (a table's records) are
+        // grouped by track, which only the whole document shows.
+        if (!key_.parse(text) || (array_->path.empty() && key_.root().member("track"))) {
             arrays_->declined = true;
             return false;
         }
         const fmt::format_int index(place.index);
         location at{0, array_->path};
         at.path.append("[").append(index.data(), index.size()).append("]");
-        k = detail::key_object_reader(key_.root(), arrays_->source, std::move(at), array_->order, array_->frames).read();
+        k = detail::key_object_reader(key_.root(), arrays_->source, std::move(at), array_->order).read();
         track = array_->track;
         return true;
     }
@@ -382,8 +383,7 @@ private:
 
     void begin_keys(const object& owner, const std::string& path, const std::string& field) {
         settings_ = owner.settings;
-        key_array keys{owner.name, field.empty() ? path : detail::join_path(path, field), owner.settings, owner.order,
-                       field == "frames"};
+        key_array keys{owner.name, field.empty() ? path : detail::join_path(path, field), owner.settings, owner.order};
         {
             const std::lock_guard lock(arrays_->mutex);
             arrays_->arrays.push_back(std::move(keys));

@@ -18,19 +18,19 @@ public:
     json_writer(std::string& out, const table_info& info, const write_options& opts, warnings& warn, bool lines)
         : out_(out), info_(info), opts_(opts), warn_(warn), lines_(lines) {
         if (lines_) {
-            // A header line of the settings, which no key line has, only where it is needed:
-            // other NDJSON readers take it for a row.
-            const std::string settings = settings_members(info, opts, opts.states, format::ndjson);
-            if (!settings.empty()) out_ += '{' + settings + "}\n";
+            // A header line of the settings, which no key line has, only when asked: other NDJSON
+            // readers take it for a row. The members' names say what keyrot needs.
+            if (opts.states == settings_line::always) out_ += '{' + settings_members(info, opts) + "}\n";
             return;
         }
-        out_ += '{' + settings_members(info, opts, settings_line::always, format::json);
+        out_ += '{' + settings_members(info, opts);
         if (info.named) out_ += ", \"tracks\": {";
     }
 
     json_writer(const json_writer& other, std::string& out)
         : out_(out), info_(other.info_), opts_(other.opts_), warn_(other.warn_), lines_(other.lines_),
-          name_(other.name_), translation_(other.translation_) {}
+          name_(other.name_), translation_(other.translation_), rotation_key_(other.rotation_key_),
+          angle_key_(other.angle_key_), velocity_key_(other.velocity_key_), acceleration_key_(other.acceleration_key_) {}
 
     std::unique_ptr<table_writer> row_writer(std::string& out) const override {
         if (!lines_) return nullptr;  // commas between rows, brackets around tracks
@@ -53,13 +53,10 @@ public:
         row_text text(out_);
         text.put('{');
         if (lines_ && info_.named) text.put("\"track\": "), text.put(name_), text.put(", ");
-        const bool with_frame = s.frame && info_.times != time_columns::time_only;
-        if (with_frame) text.put("\"frame\": "), text.number(*s.frame, std::nullopt);
-        if (!with_frame || s.has_time) {
-            if (with_frame) text.put(", ");
-            text.put('"'), text.put(info_.time_name), text.put("\": ");
-            text.number(s.time, std::nullopt);  // --precision rounds values, never when they are
-        }
+        if (s.frame && info_.times != time_columns::time_only)
+            text.put("\"frame\": "), text.number(*s.frame, std::nullopt), text.put(", ");
+        text.put('"'), text.put(info_.time_name), text.put("\": ");
+        text.number(s.time, std::nullopt);  // --precision rounds values, never when they are
         write_rotation(text, row_values(s, opts_, warn_));
         if (translation_ && s.translation) {
             text.put(", \"translation\": ");
@@ -68,13 +65,13 @@ public:
         if (s.scale) text.put(", \"scale\": "), array(text, {s.scale->x, s.scale->y, s.scale->z});
         if (!s.weights.empty()) text.put(", \"weights\": "), array(text, s.weights.data(), s.weights.size());
         if (s.rates) {
-            const auto rate = [&](const std::optional<vec3>& v, std::string_view member) {
+            const auto rate = [&](const std::optional<vec3>& v, std::string_view key) {
                 if (!v) return;
                 const vec3 r = rate_values(*v, opts_);
-                text.put(", \""), text.put(member), text.put("\": "), array(text, {r.x, r.y, r.z});
+                text.put(key), array(text, {r.x, r.y, r.z});
             };
-            rate(s.rates->velocity, velocity_member);
-            rate(s.rates->acceleration, acceleration_member);
+            rate(s.rates->velocity, velocity_key_);
+            rate(s.rates->acceleration, acceleration_key_);
         }
         text.put(lines_ ? "}\n" : "}");
         text.flush();
@@ -130,9 +127,14 @@ private:
     std::string name_;
     bool translation_ = false;
     std::size_t tracks_ = 0, rows_ = 0;
-    // The rotation's member names as each row writes them: ", \"quat\": ".
-    std::string rotation_key_ = fmt::format(", \"{}\": ", rotation_member(opts_.representation)),
-                angle_key_ = fmt::format(", \"{}\": ", angle_member);
+    // The members' names as each row writes them (", \"quat\": "): on an NDJSON line, with the unit or
+    // order they are in where it is not the default, as a JSON document states it in its fields.
+    std::string key(std::string_view member) const {
+        if (!lines_) return fmt::format(", \"{}\": ", member);
+        return fmt::format(", \"{}\": ", member_in(member, opts_.angles, opts_.order));
+    }
+    std::string rotation_key_ = key(rotation_member(opts_.representation)), angle_key_ = key(angle_member),
+                velocity_key_ = key(velocity_member), acceleration_key_ = key(acceleration_member);
 };
 
 }  // namespace

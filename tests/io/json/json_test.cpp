@@ -62,9 +62,11 @@ TEST_CASE("JSON errors name the key path and what was expected") {
           "in: keys[0]: 'time': expected a number, got string \"0\"");
     CHECK(error_of(R"({"keys": [{"time": 0, "quat": [1,0,0,0], "rotvec": [0,0,0]}]})", format::json).find("more than one rotation") !=
           std::string::npos);
-    CHECK(error_of(R"({"keys": [{"time": 0, "frame": 0, "quat": [1,0,0,0]}]})", format::json) ==
-          "in: keys[0]: a key has both 'time' and 'frame': expected exactly one");
     CHECK(error_of(R"({"keys": [{"quat": [1,0,0,0]}]})", format::json) == "in: keys[0]: expected a 'time' or a 'frame'");
+    // both, as keyrot's own frames and a table's records have them: the time places the key, the frame labels it
+    const key both = read(R"({"keys": [{"time": 0.5, "frame": 7, "quat": [1,0,0,0]}]})", format::json).tracks.at(0).keys.at(0);
+    CHECK(both.time == 0.5);
+    CHECK(both.frame == 7);
     CHECK(error_of("{\"keys\": [\n{\"time\": 0,", format::json).find("in:2:12: invalid JSON") == 0);
     CHECK(error_of(std::string(100, '[') + std::string(100, ']'), format::json).find("nested deeper") != std::string::npos);
     CHECK(error_of(R"({"keys": [{"time": 0, "matrix": [[1,0,0],[0,1,0]]}]})", format::json).find("expected 3 or 4 rows") !=
@@ -130,8 +132,8 @@ TEST_CASE("NDJSON: one key per line, tracks by field, errors by line") {
           "in:3: 'quat[3]': expected a number, got string \"0\"");
     CHECK(error_of("{\"track\": \"a\", \"time\": 0, \"quat\": [1,0,0,0]}\n{\"time\": 1, \"quat\": [1,0,0,0]}\n",
                    format::ndjson) == "in:2: some lines have a 'track' and some do not: expected all or none");
-    CHECK(error_of("{\"track\": 7, \"time\": 0, \"quat\": [1,0,0,0]}\n", format::ndjson) ==
-          "in:1: 'track': expected a string, got number");
+    CHECK(error_of("{\"track\": [7], \"time\": 0, \"quat\": [1,0,0,0]}\n", format::ndjson) ==
+          "in:1: 'track': expected a string, got array");
 }
 
 namespace {
@@ -305,6 +307,8 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
              "{\"tracks\": {\"\xc3\": [" + k + "]}}", "{\"tracks\": {\"\xf4\x90\x80\x80\": [" + k + "]}}",
              "[{\"time\": 0, \"quat\": [1, 0, 0, 0], \"note\": \"\xe3\x82\"}]",
              "[" + k + "]\n" + std::string(1, '\0') + "x", "[" + k + "]" + std::string(1, '\0'),
+             // A bare array's keys that name their tracks, a table's records: grouped by track, as a whole.
+             R"([{"track": "a", "time": 0, "quat": [1, 0, 0, 0]}])",
          }) {
         CAPTURE(doc);
         CHECK(streamed_keys(doc).ends_with("declined"));
@@ -349,6 +353,29 @@ TEST_CASE("JSON streamed: the keys read_json gives, or declined for read_json to
     CHECK(whole_keys(bad) == "in: [1400]: 'quat': expected an array of 4 numbers, got 3 elements");
 }
 
+TEST_CASE("JSON: a bare array of records that name their tracks, as pandas writes a table's rows") {
+    // interleaved rows of two tracks, as a CSV table of them may be: each track's keys in order,
+    // the tracks in the order they first appear, each key named by its place in the array
+    const document doc = read(R"([{"track": "knee", "time": 0, "qw": 1, "qx": 0, "qy": 0, "qz": 0},
+        {"track": "hip", "time": 0, "qw": 1, "qx": 0, "qy": 0, "qz": 0},
+        {"track": "knee", "time": 0.5, "qw": 0, "qx": 1, "qy": 0, "qz": 0, "note": 3},
+        {"track": 7, "time": 0.5, "quat": [0, 0, 1, 0]}])",
+                              format::json);
+    CHECK(doc.named);
+    REQUIRE(doc.tracks.size() == 3);
+    CHECK(doc.tracks[0].name == "knee");
+    CHECK(doc.tracks[1].name == "hip");
+    CHECK(doc.tracks[2].name == "7");
+    REQUIRE(doc.tracks[0].keys.size() == 2);
+    CHECK(doc.tracks[0].keys[1].at.path == "[2]");
+    CHECK(doc.tracks[0].keys[1].rotation.x == 1);
+    CHECK(error_of(R"([{"track": "a", "time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "quat": [1, 0, 0, 0]}])", format::json) ==
+          "in: [1]: some keys have a 'track' and some do not: expected all or none");
+    CHECK(error_of(R"([{"track": "a", "time": 1, "qw": 1, "qx": 0, "qy": 0, "qz": 0},
+        {"track": "b", "time": 0, "qw": 1, "qx": 0, "qy": 0, "qz": 0}, {"track": "a", "time": 0, "qw": 1, "qx": 0, "qy": 0, "qz": 0}])",
+                   format::json) == "in: [2]: time 0 s is not after the previous key's 1 s: expected strictly increasing times");
+}
+
 TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-json's reading gives") {
     // Each line twice: as written, which flat_json takes, and with a member
     // flat_json declines (nested deeper than it reads), which nlohmann-json reads.
@@ -384,6 +411,9 @@ TEST_CASE("NDJSON: lines flat_json takes give the keys and messages nlohmann-jso
              R"("track": "hip", "time": 0, "quat": [1, 0, 0, 0])", R"("track": 7, "time": 0, "quat": [1, 0, 0, 0])",
              R"("track": "a\tb", "time": 0, "quat": [1, 0, 0, 0])", R"("track": "caf\u00e9\ud83e\uddb4", "time": 0, "quat": [1, 0, 0, 0])",
              R"("tr\u0061ck": "\"hip\"", "t\u0069me": 0, "quat": [1, 0, 0, 0])",
+             R"("time": 0.5, "frame": 12, "qw": 1, "qx": 0, "QY": 0, "qz": 0)",
+             R"("track": 3, "time": 0.5, "ax": "0", "ay": 0, "az": 1, "angle_rad": 1, "tx": "", "ty": null, "tz": "")",
+             R"("time": 0.5, "rx": 1, "ry": 2, "rz": "x")", R"("time": 0.5, "e1": 1, "e2": 2)",
          }) {
         CAPTURE(key);
         const std::string taken = "{" + key + "}", declined = R"({"note": [[[[[[[[[1]]]]]]]]], )" + key + "}";
