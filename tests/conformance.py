@@ -279,8 +279,9 @@ def write_input(tracks, rep, fmt, seq, degrees, order, by_frame, key_fps, interl
 
 
 # ---------------------------------------------------------------- outputs
-def read_output(text, fmt, rep, seq, degrees, order):
-    """-> {track: [(frame or None, time, matrix, translation or None)]}"""
+def read_output(text, fmt, rep, seq, degrees, order, own_angles=False):
+    """-> {track: [(frame or None, time, matrix, translation or None, Euler angles as written or None)]}.
+    `own_angles`: Euler angles of Euler input in its own sequence, which may leave the canonical ranges."""
     scale = (math.pi / 180) if degrees else 1.0
     def rot(get, quat_order):
         if rep == "quat":
@@ -296,9 +297,10 @@ def read_output(text, fmt, rep, seq, degrees, order):
             return Rotation.from_rotvec(np.array(get("rotvec")) * scale).as_matrix(), None
         if rep == "euler":
             e = np.array(get("euler")) * scale
-            assert all(-math.pi - 1e-12 <= a <= math.pi + 1e-12 for a in e), "Euler angle outside [-180, 180]"
-            lo, hi = (-math.pi / 2, math.pi / 2) if seq[0].lower() != seq[2].lower() else (0, math.pi)
-            assert lo - 1e-12 <= e[1] <= hi + 1e-12, "middle Euler angle outside its canonical range"
+            if not own_angles:
+                assert all(-math.pi - 1e-12 <= a <= math.pi + 1e-12 for a in e), "Euler angle outside [-180, 180]"
+                lo, hi = (-math.pi / 2, math.pi / 2) if seq[0].lower() != seq[2].lower() else (0, math.pi)
+                assert lo - 1e-12 <= e[1] <= hi + 1e-12, "middle Euler angle outside its canonical range"
             return Rotation.from_euler(seq, e).as_matrix(), None
         m = np.array(get("matrix"))
         if rep == "matrix4":
@@ -339,7 +341,8 @@ def read_output(text, fmt, rep, seq, degrees, order):
             m, t4 = rot(get, "wxyz")
             t = t4 if t4 is not None else ([float(r[c]) for c in ("tx", "ty", "tz")] if r.get("tx") else None)
             frame = float(r["frame"]) if r.get("frame") else None
-            result.setdefault(r.get("track", ""), []).append((frame, float(r["time"]), m, t))
+            angles = get("euler") if rep == "euler" else None
+            result.setdefault(r.get("track", ""), []).append((frame, float(r["time"]), m, t, angles))
         return result
     objs = []
     if fmt == "ndjson":
@@ -363,7 +366,8 @@ def read_output(text, fmt, rep, seq, degrees, order):
     for name, o in objs:
         m, t4 = rot(lambda n, o=o: o[names.get(n, n)], member_order)
         t = t4 if t4 is not None else o.get("translation")
-        result.setdefault(name, []).append((o.get("frame"), o["time"], m, t))
+        angles = o[names.get("euler", "euler")] if rep == "euler" else None
+        result.setdefault(name, []).append((o.get("frame"), o["time"], m, t, angles))
     return result
 
 
@@ -382,6 +386,8 @@ def run_case(keyrot, rng, case):
     out_rep = rng.choice(OUT_REPS)
     out_fmt = rng.choice(["csv", "json", "ndjson"])
     out_seq = rng.choice(SEQS)
+    if case % 4 == 0:  # (without drawing on rng) Euler output of Euler input in its own sequence
+        out_seq = seq
     fps = float(rng.choice([24, 30, 12, 25, 7.5]))
     by_frame = bool(rng.random() < 0.3)
     key_fps = float(rng.choice([24, 30]))
@@ -437,23 +443,30 @@ def run_case(keyrot, rng, case):
     desc = f"case {case}: {' '.join(args[1:])}\n--- input ---\n{text[:2000]}"
     if proc.returncode != 0:
         return f"{desc}\nexit {proc.returncode}: {proc.stderr.decode()}"
-    out = read_output(proc.stdout.decode(), out_fmt, out_rep, out_seq, degrees, order)
+    # Euler output of Euler input in its own sequence: each key's own angles at its time.
+    own_angles = rep == "euler" and out_rep == "euler" and out_seq == seq
+    out = read_output(proc.stdout.decode(), out_fmt, out_rep, out_seq, degrees, order, own_angles)
     names = list(tracks) if n_tracks > 1 else [""]
     if list(out) != names and not (command == "resample" and set(out) <= set(names)):
         return f"{desc}\ntracks {list(out)} != {names}"
-    for name, (keys, _) in zip(names, tracks.values()):
+    for name, (keys, rows) in zip(names, tracks.values()):
         got = out.get(name, [])
+        if own_angles:
+            at_key = {k["time"]: r for k, r in zip(keys, rows)}
+            for _, time, _, _, angles in got:
+                if time in at_key and angles != at_key[time]:
+                    return f"{desc}\ntrack {name} time {time}: Euler angles {angles}, given as {at_key[time]}"
         if command == "convert":
             want = [(k["time"], to_matrix_wxyz(k["q"] / np.linalg.norm(k["q"])), k["t"]) for k in keys]
         else:
             reference = reference_frames(keys, method, path, fps, seq)
-            if [f for f, _, _, _ in got] != [f for f, _, _, _ in reference]:
+            if [row[0] for row in got] != [f for f, _, _, _ in reference]:
                 return f"{desc}\ntrack {name}: frames differ"
             want = [(t, m, tr) for _, t, m, tr in reference]
         if len(got) != len(want):
             return f"{desc}\ntrack {name}: {len(got)} rows, expected {len(want)}"
         for row, (t, m, tr) in zip(got, want):
-            frame, time, gm, gt = row
+            frame, time, gm, gt, _ = row
             if abs(time - t) > 1e-12:
                 return f"{desc}\ntrack {name}: time {time} != {t}"
             if not close(gm, m):

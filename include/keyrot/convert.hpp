@@ -83,8 +83,8 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept;
 /// never jump by a turn or flip at +-180 degrees: of the two solutions
 /// (a, b, c) and (a + pi, pi - b, c + pi) (-b for proper Euler sequences),
 /// each angle moved by whole turns to within half a turn of the previous
-/// one, the one whose angles move least in all.
-std::array<double, 3> continuous_euler(quat q, const euler_seq& seq, const std::array<double, 3>& previous) noexcept;
+/// one, the one whose angles move least in all (gimbal_lock as to_euler's).
+euler_angles continuous_euler(quat q, const euler_seq& seq, const std::array<double, 3>& previous) noexcept;
 /// The rotation matrix acting on column vectors: to_matrix(90 degrees about z).m[0] = {0, -1, 0}.
 mat3 to_matrix(quat q) noexcept;
 

@@ -17,6 +17,10 @@ inline constexpr double gimbal_lock = 4e-16;
 /// The compensated product fixes v only to about 1e-32, so below this the
 /// direction of v, the axis of the turn, would be rounding noise.
 inline constexpr double opposite_keys = 1e-15;
+/// A quaternion or an axis given this close to unit length is one but for
+/// its digits' rounding (two units in the last place): a round trip writes
+/// it back as given, where a longer one is normalised.
+inline constexpr double unit_rounding = 4e-16;
 /// |dt| in seconds under which compare matches rows by time.
 inline constexpr double match_time = 1e-6;
 

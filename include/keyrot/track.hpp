@@ -75,6 +75,18 @@ struct frame_rates {
     bool any() const { return velocity || acceleration; }
 };
 
+/// A rotation's values as a file gave them, in its angle unit: a
+/// quaternion (w, x, y, z), an axis and angle, a rotation vector, or Euler
+/// angles in the track's sequence, as key::given_as says.
+struct given_rotation {
+    std::array<double, 4> values{};
+    angle_unit unit = angle_unit::degrees;
+    /// The Euler angles in radians (for given_as rep::euler).
+    std::array<double, 3> euler_radians() const noexcept {
+        return {to_radians(values[0], unit), to_radians(values[1], unit), to_radians(values[2], unit)};
+    }
+};
+
 struct key {
     location at;                  ///< where it was read, for errors
     double time = 0;              ///< seconds
@@ -84,11 +96,11 @@ struct key {
     std::optional<vec3> translation, scale;
     morph_weights weights;        ///< as many on every key of a track (check_next)
     rep given_as = rep::quat;
-    /// The Euler angles as given (radians), for --method euler.
-    std::optional<std::array<double, 3>> euler;
+    /// The rotation as given, but for matrices: the Euler angles --method
+    /// euler interpolates, the values a round trip writes back (reduce's kept
+    /// keys, an output in the representation they were given in).
+    std::optional<given_rotation> given;
     bool renormalised = false;  ///< input norm differed from 1 by > tol::unit_norm
-    /// A quaternion key whose normalisation changed its bits: as given (reduce writes its keys back so).
-    std::optional<quat> given_quat = std::nullopt;
     /// glTF CUBICSPLINE keys only (held apart: keys are copied often, and most have none).
     std::shared_ptr<const full_spline_key> spline;
     /// As read, in radians (a frame of resample --velocity); held apart as the spline.

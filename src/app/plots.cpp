@@ -53,7 +53,27 @@ void mark(svg::panel& p, std::size_t i, svg::point at, const std::string& label)
 
 }  // namespace
 
-std::array<double, 4> rotation_values::next(quat q) {
+namespace {
+
+/// How a drawing's Euler curves are written: continuous, in its sequence and unit.
+write_options euler_curves(const rotation_drawing& d) {
+    write_options w;
+    w.representation = rep::euler;
+    w.euler = d.euler;
+    w.angles = d.unit;
+    w.euler_continuous = true;
+    return w;
+}
+
+}  // namespace
+
+rotation_values::rotation_values(const rotation_drawing& d, quat first, const std::optional<euler_seq>& euler,
+                                 method how)
+    : d_(d), first_(first), euler_(euler_curves(d), format::csv) {
+    euler_.begin_track(euler, how, std::nullopt);
+}
+
+std::array<double, 4> rotation_values::next(double time, quat q) {
     std::array<double, 4> v{};
     switch (d_.curves) {
         case plot_curves::quat:
@@ -61,10 +81,11 @@ std::array<double, 4> rotation_values::next(quat q) {
             previous_ = q;
             v = {q.w, q.x, q.y, q.z};
             break;
-        case plot_curves::euler:
-            angles_ = started_ ? continuous_euler(q, *d_.euler, angles_) : to_euler(q, *d_.euler).angles;
-            for (std::size_t i = 0; i < 3; ++i) v[i] = from_radians(angles_[i], d_.unit);
+        case plot_curves::euler: {
+            const auto& angles = euler_.of(time, q)->values;
+            std::copy_n(angles.begin(), 3, v.begin());
             break;
+        }
         case plot_curves::angle: v[0] = from_radians(geodesic_angle(first_, q), d_.unit); break;
     }
     started_ = true;
@@ -106,14 +127,16 @@ rotation_drawing drawing_of(const options& o, const std::optional<euler_seq>& ow
 track_drawing::track_drawing(const std::string& title, const track_span& span,
                              const std::optional<euler_seq>& euler, const rotation_drawing& drawing, method how,
                              path way, bool speed)
-    : span_(span), drawing_(drawing), speed_(speed), marking_(span.keys <= most_marked), builder_(how, way, euler),
+    : span_(span), drawing_(drawing), euler_(euler), how_(how), speed_(speed), marking_(span.keys <= most_marked),
+      builder_(how, way, euler),
       rotation_(rotation_panel(title, rotation_values(drawing, quat{}))),
       speeds_{title + ": angular speed", "time (s)", fmt::format("speed ({}/s)", unit_name(drawing.unit)),
               {{"speed", svg::colour::orange, {}}}, {}, {}, true, true},
       thinners_(rotation_.curves.size() + 1, svg::curve_thinner(span.first, span.last)) {}
 
 void track_drawing::add(const key& k) {
-    if (!values_) values_.emplace(drawing_, k.rotation);  // the angle is from the first key
+    if (!values_) values_.emplace(drawing_, k.rotation, euler_, how_);  // the angle is from the first key
+    values_->key(k);
     last_key_ = k.rotation;
     builder_.add(k);
     draw(false);
@@ -135,7 +158,7 @@ void track_drawing::draw(bool end) {
 }
 
 void track_drawing::sample(double time, quat q, const segment_curve* curve, double h, bool at_key) {
-    const std::array<double, 4> v = values_->next(q);
+    const std::array<double, 4> v = values_->next(time, q);
     for (std::size_t i = 0; i < rotation_.curves.size(); ++i) {
         thinners_[i].add({time, v[i]});
         if (at_key && marking_) mark(rotation_, i, {time, v[i]}, "keys");
@@ -240,7 +263,7 @@ void reduction_plot::end_track() {
                                              svg::curve_thinner(keys_.front().time, keys_.back().time));
     std::size_t next_kept = 0;
     for (const timed& k : keys_) {
-        const std::array<double, 4> v = values.next(k.rotation);
+        const std::array<double, 4> v = values.next(k.time, k.rotation);
         const bool kept = next_kept < kept_.size() && kept_[next_kept] == k.time;
         next_kept += kept;
         for (std::size_t i = 0; i < original.curves.size(); ++i) {

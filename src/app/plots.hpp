@@ -32,13 +32,18 @@ struct rotation_drawing {
 rotation_drawing drawing_of(const options& o, const std::optional<euler_seq>& own);
 
 /// A rotation as a drawing's curves, one value a curve, each continuous
-/// from the rotation before (a quaternion's sign, Euler angles' turns),
-/// from the track's first key `first`.
+/// from the rotation before (a quaternion's sign; Euler angles as an Euler
+/// output gives them, own_values: the keys' own where they are in the
+/// drawing's sequence, on their branch between them), from the track's
+/// first key `first`, its keys in sequence `euler` played by `how`.
 class rotation_values {
 public:
-    rotation_values(const rotation_drawing& d, quat first) : d_(d), first_(first) {}
-    /// The next rotation's values (the first curves' of the four).
-    std::array<double, 4> next(quat q);
+    rotation_values(const rotation_drawing& d, quat first, const std::optional<euler_seq>& euler = std::nullopt,
+                    method how = method::slerp);
+    /// A key, before the rotations it takes part in.
+    void key(const keyrot::key& k) { euler_.key(k); }
+    /// The values of the rotation at `time` (the first curves' of the four).
+    std::array<double, 4> next(double time, quat q);
     /// Each curve's name in the legend.
     std::vector<std::string> labels() const;
     std::string y_label() const;
@@ -46,7 +51,7 @@ public:
 private:
     rotation_drawing d_;
     quat first_, previous_;
-    std::array<double, 3> angles_{};
+    own_values euler_;
     bool started_ = false;
 };
 
@@ -76,6 +81,8 @@ private:
 
     track_span span_;
     rotation_drawing drawing_;
+    std::optional<euler_seq> euler_;
+    method how_;
     bool speed_, marking_;
     std::optional<rotation_values> values_;
     segment_builder builder_;

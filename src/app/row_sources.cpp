@@ -36,8 +36,7 @@ void own_methods(const track_interpolation& own, Options& r) {
 table_row key_row(const key& k) {
     return table_row{{k.time, k.frame, k.rotation, k.translation, k.scale, k.weights,  // (views k's)
                       k.rates.get()},
-                     false,
-                     {},
+                     nullptr,
                      k.spline.get()};
 }
 
@@ -113,12 +112,15 @@ public:
     void begin_track(const std::string& name, const std::optional<euler_seq>& euler,
                      const std::optional<track_interpolation>& own, channels carried, row_sink row) override {
         row_.emplace(row);
-        resampler_.emplace(of(own), euler, carried, [this](const sample& s) { row_->frame(s); }, row_->arc_frames());
+        const resample_options r = of(own);
+        row_->begin_track(euler, r.how, r.fps);
+        resampler_.emplace(r, euler, carried, [this](const sample& s) { row_->frame(s); }, row_->arc_frames());
         track_ = name;
         first_.reset();
     }
     void add(const key& k) override {
         if (!first_) first_ = k.at;
+        row_->key(k);
         resampler_->add(k);
     }
     void end_track() override {
@@ -210,11 +212,15 @@ public:
     track_interpolation written(const std::optional<track_interpolation>& own) const override {
         return own.value_or(track_interpolation{});  // (its time_rounding is not written)
     }
-    void begin_track(const std::string&, const std::optional<euler_seq>&, const std::optional<track_interpolation>&,
+    void begin_track(const std::string&, const std::optional<euler_seq>& euler, const std::optional<track_interpolation>&,
                      channels, row_sink row) override {
         row_ = row;
+        row_->begin_track(euler, method::step, std::nullopt);  // (a row a key: how they play is not asked)
     }
-    void add(const key& k) override { row_->row(key_row(k)); }
+    void add(const key& k) override {
+        row_->key(k);
+        row_->row(key_row(k));
+    }
     void end_track() override {}
 
 protected:
@@ -263,7 +269,11 @@ public:
         reducer_.emplace(of(own), euler, source_, [this](const key& k) {
             if (watch_) watch_->keep(k);
             table_row kept = key_row(k);
-            kept.rotation = k.given_quat.value_or(k.rotation);
+            if (k.given_as == rep::quat && k.given) {
+                const auto& v = k.given->values;
+                kept.rotation = quat{v[0], v[1], v[2], v[3]};
+            }
+            row_->key(k);
             row_->row(kept);
         });
     }

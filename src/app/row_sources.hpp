@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/own_values.hpp"
 #include "io/common/interface.hpp"
 #include "io/document.hpp"
 #include "keyrot/reduce.hpp"
@@ -76,13 +77,40 @@ struct document_facts {
 document_facts facts_of(const document& doc);
 
 /// Where a row source puts a track's rows: into a table, counted (how many
-/// rows the keys have made so far says whether parsing ahead pays).
+/// rows the keys have made so far says whether parsing ahead pays), each
+/// with the values of its own that `own` gives it (none: the writer's).
 class row_sink final : public arc_frame_sink {
 public:
-    row_sink(table_output& out, std::size_t& count) : out_(&out), count_(&count), arc_frames_(out.arc_frames()) {}
-    void row(const table_row& r) const { ++*count_, out_->row(r); }
+    row_sink(table_output& out, std::size_t& count, own_values* own = nullptr)
+        : out_(&out), count_(&count), arc_frames_(out.arc_frames()), own_(own && own->any() ? own : nullptr) {}
+    /// A track's rows begin: of its keys in `euler`, played by `how`, on the
+    /// grid of `fps` (none: a row a key).
+    void begin_track(const std::optional<euler_seq>& euler, method how, std::optional<double> fps) const {
+        if (own_) own_->begin_track(euler, how, fps);
+    }
+    /// A key the next rows are made of.
+    void key(const keyrot::key& k) const {
+        if (own_) own_->key(k);
+    }
+    void row(const table_row& r) const {
+        ++*count_;
+        if (const own_rotation* values = own_ ? own_->of(r.time, r.rotation) : nullptr) {
+            table_row with = r;
+            with.own = values;
+            return out_->row(with);
+        }
+        out_->row(r);
+    }
     /// A row that is a sample as it is (resample's frames).
-    void frame(const sample& s) const { ++*count_, out_->frame(s); }
+    void frame(const sample& s) const {
+        ++*count_;
+        if (const own_rotation* values = own_ ? own_->of(s.time, s.rotation) : nullptr) {
+            table_row with{s};
+            with.own = values;
+            return out_->row(with);
+        }
+        out_->frame(s);
+    }
     /// Itself where the output takes slerp and squad frames whose rotations
     /// it works out (counting them as rows), else none.
     arc_frame_sink* arc_frames() { return arc_frames_ ? this : nullptr; }
@@ -93,6 +121,7 @@ private:
     table_output* out_;
     std::size_t* count_;
     arc_frame_sink* arc_frames_;
+    own_values* own_;
 };
 
 /// What makes a track's rows from its keys, chosen once per input:

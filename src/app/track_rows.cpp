@@ -12,10 +12,10 @@
 
 namespace keyrot::detail {
 
-std::optional<document_facts> stream_keys(key_reader& reader, row_source& source, table_output& rows,
+std::optional<document_facts> stream_keys(key_reader& reader, row_source& source, table_output& rows, own_values own,
                                           row_counts& counts, const document_facts* known,
                                           const std::string& source_name, warnings& warn) {
-    const row_sink row(rows, counts.rows);
+    const row_sink row(rows, counts.rows, &own);
     document_facts seen;
     std::set<std::string> names;
     std::string name;
@@ -44,7 +44,8 @@ std::optional<document_facts> stream_keys(key_reader& reader, row_source& source
 }
 
 std::optional<document_facts> rows_apart(const std::function<std::vector<std::unique_ptr<key_reader>>()>& readers,
-                                         const row_source& source, table_output& rows, const std::string& source_name) {
+                                         const row_source& source, table_output& rows, const own_values& own,
+                                         const std::string& source_name) {
     const unsigned cores = std::thread::hardware_concurrency();
     if (cores < 2) return std::nullopt;
     struct track_made {
@@ -68,9 +69,9 @@ std::optional<document_facts> rows_apart(const std::function<std::vector<std::un
             track_made& m = made[i];
             try {
                 std::ostringstream said;
-                warnings own(said, source_name);
+                warnings warned(said, source_name);
                 row_counts counts;
-                m.facts = stream_keys(*tracks[i], *m.source, *m.rows, counts, nullptr, source_name, own);
+                m.facts = stream_keys(*tracks[i], *m.source, *m.rows, own, counts, nullptr, source_name, warned);
                 m.warned = said.str();
             } catch (...) {
                 m.failure = std::current_exception();

@@ -17,13 +17,14 @@ struct row_counts {
 };
 
 /// `reader`'s keys into `rows` by `source`, each track's rows made as its
-/// keys arrive (`source_name` names the input). With `known` (pass 1's
+/// keys arrive with the values of their own `own` gives them
+/// (`source_name` names the input). With `known` (pass 1's
 /// facts) the keys are known to be good; without (one pass), each track
 /// is taken to carry the channels its first key carries, and the keys are
 /// checked as pass 1 checks them. Returns the facts seen, or nothing when a
 /// track comes back after another one began, or the reader declines the
 /// document.
-std::optional<document_facts> stream_keys(key_reader& reader, row_source& source, table_output& rows,
+std::optional<document_facts> stream_keys(key_reader& reader, row_source& source, table_output& rows, own_values own,
                                           row_counts& counts, const document_facts* known,
                                           const std::string& source_name, warnings& warn);
 
@@ -37,6 +38,7 @@ std::optional<document_facts> stream_keys(key_reader& reader, row_source& source
 /// then streams the input, which says the warnings in order.
 /// What a track throws is thrown, the first track's first.
 std::optional<document_facts> rows_apart(const std::function<std::vector<std::unique_ptr<key_reader>>()>& readers,
-                                         const row_source& source, table_output& rows, const std::string& source_name);
+                                         const row_source& source, table_output& rows, const own_values& own,
+                                         const std::string& source_name);
 
 }  // namespace keyrot::detail

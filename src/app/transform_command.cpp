@@ -69,16 +69,23 @@ pass_keys open_keys(const transform_plan& p, const input_source& src, warnings& 
     return keys;
 }
 
-/// How the plan's output is written, for an input of facts `d`: a glTF
-/// output of a glTF input rewrites that file.
-write_options writing_for(const transform_plan& p, const input_source& src, const document_facts& d, warnings& warn) {
+/// The plan's output, and the values of their own its rows carry.
+struct written_output {
+    std::unique_ptr<table_output> table;
+    own_values own;
+};
+
+/// The plan's output for an input of facts `d` (the writer's warnings to
+/// `output_warn`): a glTF output of a glTF input rewrites that file.
+written_output open_output(const transform_plan& p, const input_source& src, const document_facts& d,
+                           std::ostream& out, warnings& warn, warnings& output_warn) {
     write_options w = writing(p.flags, d.tracks.front().euler);
     w.commit.batch = p.batch;
     w.commit.follow_links = !p.flags.output_dir;
     if (is_gltf(p.out) && is_gltf(p.in)) w.gltf = loaded_gltf(p, src, warn);
     // A BVH output of a BVH input keeps its hierarchy; a glTF output makes it the nodes.
     if ((p.out == format::bvh || is_gltf(p.out)) && p.in == format::bvh) w.bvh = read_bvh_source(*src.open(), p.reading);
-    return w;
+    return {open_table(p.out, p.target, out, p.rows->table(d), w, output_warn), own_values(w, p.out)};
 }
 
 /// Pass 1 over a streamed input: every key validated, the facts learnt.
@@ -127,27 +134,27 @@ bool scan_json(const transform_plan& p, const input_source& src, document_facts&
 /// Pass 2 over a streamed input whose tracks come one after another:
 /// stream_keys, parsing ahead where it pays.
 std::optional<document_facts> stream_rows(const transform_plan& p, const input_source& src,
-                                          const document_facts* known, table_output& rows, warnings& warn) {
+                                          const document_facts* known, const written_output& rows, warnings& warn) {
     row_counts counts;
     // Parsing ahead on a thread of its own pays when keys outnumber rows
     // (motion capture at 120 Hz resampled to 24 fps, say). Otherwise the
     // formatting threads keep the cores busy, and it would only cost.
     const pass_keys input = open_keys(p, src, warn, [&] { return counts.rows < counts.keys; });
-    return stream_keys(*input.reader, *p.rows, rows, counts, known, src.source(), warn);
+    return stream_keys(*input.reader, *p.rows, *rows.table, rows.own, counts, known, src.source(), warn);
 }
 
 /// One pass over a glTF input by rows_apart, where it takes it (a glTF file
 /// resampled into a glTF file) and it pays: a thread costs about what a
 /// few thousand keys do, and a quarter of a megabyte of buffers holds more.
-std::optional<document_facts> rows_by_track(const transform_plan& p, const input_source& src, table_output& rows,
-                                            warnings& warn) {
+std::optional<document_facts> rows_by_track(const transform_plan& p, const input_source& src,
+                                            const written_output& rows, warnings& warn) {
     if (!is_gltf(p.in)) return std::nullopt;
     const std::shared_ptr<gltf_source> loaded = loaded_gltf(p, src, warn);
     const auto readers = [&] {
         if (read_buffers(*loaded) < 256 * 1024) return std::vector<std::unique_ptr<key_reader>>{};
         return make_gltf_track_readers(loaded, p.reading);
     };
-    return rows_apart(readers, *p.rows, rows, src.source());
+    return rows_apart(readers, *p.rows, *rows.table, rows.own, src.source());
 }
 
 /// Every track's keys to the row source's check_track: an input read whole
@@ -177,9 +184,11 @@ void check_tracks(const transform_plan& p, const input_source& src, const std::o
 }
 
 /// The tracks of an input read whole, whose facts are `d`.
-void whole_rows(const transform_plan& p, const document& doc, const document_facts& d, table_output& rows) {
+void whole_rows(const transform_plan& p, const document& doc, const document_facts& d, const written_output& out) {
     std::size_t rows_put = 0;
-    const row_sink row(rows, rows_put);
+    own_values own = out.own;
+    table_output& rows = *out.table;
+    const row_sink row(rows, rows_put, &own);
     for (std::size_t i = 0; i < doc.tracks.size(); ++i) {
         const track& t = doc.tracks[i];
         const channels carried = d.tracks[i].carried;
@@ -213,15 +222,14 @@ bool transform_in_one_pass(const transform_plan& p, const input_source& src, std
             guess.add(name, reader->settings(), make_key(raw, reader->settings(), attempt));
             guess.named = reader->named();
         }
-        const auto table =
-            open_table(p.out, p.target, out, p.rows->table(guess), writing_for(p, src, guess, attempt), output_warn);
-        std::optional<document_facts> seen = rows_by_track(p, src, *table, attempt);
-        if (!seen) seen = stream_rows(p, src, nullptr, *table, attempt);
+        const written_output output = open_output(p, src, guess, out, attempt, output_warn);
+        std::optional<document_facts> seen = rows_by_track(p, src, output, attempt);
+        if (!seen) seen = stream_rows(p, src, nullptr, output, attempt);
         if (!seen || p.rows->table(*seen) != p.rows->table(guess)) return false;
         p.rows->check(*seen, attempt);
         for (const auto& t : seen->tracks)
             if (t.carried != channels_of(t.first)) return false;
-        table->finish();
+        output.table->finish();
         attempt.adopt(output_warn, output_held.str());
         return true;
     });
@@ -253,11 +261,11 @@ void transform(const transform_plan& p, const input_source& src, std::ostream& o
     }
     p.rows->check(d, warn);
     check_tracks(p, src, whole, warn);
-    const auto table = open_table(p.out, p.target, out, p.rows->table(d), writing_for(p, src, d, warn), warn);
-    if (whole) whole_rows(p, *whole, d, *table);
-    else if (!stream_rows(p, src, &d, *table, warn))  // pass 1 took it: the document is not what it was
+    const written_output output = open_output(p, src, d, out, warn, warn);
+    if (whole) whole_rows(p, *whole, d, output);
+    else if (!stream_rows(p, src, &d, output, warn))  // pass 1 took it: the document is not what it was
         throw error(changed_while_read(src.source()));
-    table->finish();
+    output.table->finish();
     p.rows->report(out, err);
 }
 

@@ -245,9 +245,10 @@ euler_angles to_euler(quat q, const euler_seq& seq) noexcept {
     return out;
 }
 
-std::array<double, 3> continuous_euler(quat q, const euler_seq& seq, const std::array<double, 3>& previous) noexcept {
+euler_angles continuous_euler(quat q, const euler_seq& seq, const std::array<double, 3>& previous) noexcept {
     constexpr double pi = std::numbers::pi, turn = 2 * std::numbers::pi;
-    const std::array<double, 3> a = to_euler(q, seq).angles;
+    const euler_angles canonical = to_euler(q, seq);
+    const std::array<double, 3>& a = canonical.angles;
     const bool proper = seq.axes[0] == seq.axes[2];
     std::array<std::array<double, 3>, 2> candidates = {a, {a[0] + pi, proper ? -a[1] : pi - a[1], a[2] + pi}};
     double best_move = 0;
@@ -261,7 +262,7 @@ std::array<double, 3> continuous_euler(quat q, const euler_seq& seq, const std::
         }
         if (c == 0 || move < best_move) best_move = move, best = c;
     }
-    return candidates[best];
+    return {candidates[best], canonical.gimbal_lock};
 }
 
 KEYROT_FMA_CLONES mat3 to_matrix(quat q) noexcept {

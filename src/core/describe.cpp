@@ -100,7 +100,7 @@ void track_describer::add(const key& k) {
         info.given_as.push_back(k.given_as);
     if (k.renormalised) info.renormalised.add(i);
     info.signed_keys = info.signed_keys || (k.given_as != rep::matrix && k.given_as != rep::matrix4);
-    if (k.euler && euler_ && gimbal_distance(k.rotation, *euler_) <= to_radians(near_gimbal_deg, angle_unit::degrees))
+    if (k.given_as == rep::euler && euler_ && gimbal_distance(k.rotation, *euler_) <= to_radians(near_gimbal_deg, angle_unit::degrees))
         info.near_gimbal.add(i);
     quat aligned = k.rotation;
     if (i > 0) {

@@ -237,7 +237,8 @@ quat segment_builder::add(const key& k) {
     }
     if (flips() && !window_.empty() && dot(window_.back().q, q) < 0) q = -q;
     std::array<double, 3> e{};
-    if (how_ == method::euler) e = k.euler ? *k.euler : to_euler(k.rotation, *seq_).angles;
+    if (how_ == method::euler)
+        e = k.given_as == rep::euler && k.given ? k.given->euler_radians() : to_euler(k.rotation, *seq_).angles;
     window_.push_back({k.time, q, q, e});  // s = q until both neighbours are known
     // A key without a spline passes its rotation, with no tangents.
     if (how_ == method::cubicspline)

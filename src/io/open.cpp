@@ -60,32 +60,6 @@ private:
     bool sign_free_;
 };
 
-/// --euler-continuous: each row's Euler angles the ones nearest the row's
-/// before in its track, worked out here, in row order, so that rows can
-/// then be formatted on any thread.
-class continuous_euler_table final : public table_output {
-public:
-    continuous_euler_table(std::unique_ptr<table_output> rows, euler_seq seq)
-        : rows_(std::move(rows)), seq_(std::move(seq)) {}
-    void begin_track(const std::string& name, channels carried, const track_interpolation& written) override {
-        previous_.reset();
-        rows_->begin_track(name, carried, written);
-    }
-    void row(const table_row& s) override {
-        table_row r = s;
-        r.euler = previous_ ? continuous_euler(s.rotation, seq_, *previous_) : to_euler(s.rotation, seq_).angles;
-        r.continuous = true;
-        previous_ = r.euler;
-        rows_->row(r);
-    }
-    void finish() override { rows_->finish(); }
-
-private:
-    std::unique_ptr<table_output> rows_;
-    euler_seq seq_;
-    std::optional<std::array<double, 3>> previous_;
-};
-
 }  // namespace
 
 std::unique_ptr<table_output> open_table(format f, const std::optional<std::string>& path, std::ostream& out,
@@ -102,12 +76,9 @@ std::unique_ptr<table_output> open_table(format f, const std::optional<std::stri
             throw input_error(warn.source(), "BVH output needs a BVH input, whose hierarchy it keeps: expected a .bvh "
                                              "input, or another output format");
         // Resampled at --fps, or the input's frames as they were.
-        return std::make_unique<bvh_output>(path, out, opts.bvh, info.fps ? 1 / *info.fps : opts.bvh->frame_time, opts);
+        return std::make_unique<bvh_output>(path, out, opts.bvh, info.fps, opts);
     }
-    auto table = std::make_unique<piped_table>(f, path, out, info, opts, warn);
-    if (opts.euler_continuous && opts.representation == rep::euler)
-        return std::make_unique<continuous_euler_table>(std::move(table), *opts.euler);
-    return table;
+    return std::make_unique<piped_table>(f, path, out, info, opts, warn);
 }
 
 bool written_at_finish(format f) { return is_gltf(f) || f == format::bvh; }

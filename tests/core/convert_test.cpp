@@ -310,19 +310,19 @@ double max_angle_diff(const std::array<double, 3>& a, const std::array<double, 3
 TEST_CASE("continuous_euler: the same rotation, the triple nearest the previous one") {
     // 179 then 181 degrees about z (ZYX): canonical -179, continuous 181.
     const euler_seq zyx = *parse_euler_seq("ZYX");
-    const auto next = continuous_euler(from_euler({181, 0, 0}, zyx, angle_unit::degrees), zyx, {179 * pi / 180, 0, 0});
+    const auto next = continuous_euler(from_euler({181, 0, 0}, zyx, angle_unit::degrees), zyx, {179 * pi / 180, 0, 0}).angles;
     CHECK(to_euler(from_euler({181, 0, 0}, zyx, angle_unit::degrees), zyx).angles[0] < 0);
     CHECK(near(next[0], 181 * pi / 180, 1e-14));
     // Two turns on: whole turns are added, not only one.
-    CHECK(near(continuous_euler(quat{}, zyx, {4 * pi + 0.1, 0, 0})[0], 4 * pi, 1e-14));
+    CHECK(near(continuous_euler(quat{}, zyx, {4 * pi + 0.1, 0, 0}).angles[0], 4 * pi, 1e-14));
     // The other Tait-Bryan solution where it is nearer: (10, 100, 20) is canonically (-170, 80, -160).
     const quat past = from_euler({10, 100, 20}, zyx, angle_unit::degrees);
-    const auto other = continuous_euler(past, zyx, {10 * pi / 180, 99 * pi / 180, 20 * pi / 180});
+    const auto other = continuous_euler(past, zyx, {10 * pi / 180, 99 * pi / 180, 20 * pi / 180}).angles;
     CHECK(max_angle_diff(other, {10 * pi / 180, 100 * pi / 180, 20 * pi / 180}) < 1e-13);
     // Proper Euler: (a + 180, -b, c + 180).
     const euler_seq zxz = *parse_euler_seq("ZXZ");
     const quat q = from_euler({30, -20, 40}, zxz, angle_unit::degrees);
-    CHECK(max_angle_diff(continuous_euler(q, zxz, {0.5, -0.3, 0.7}), {30 * pi / 180, -20 * pi / 180, 40 * pi / 180}) < 1e-13);
+    CHECK(max_angle_diff(continuous_euler(q, zxz, {0.5, -0.3, 0.7}).angles, {30 * pi / 180, -20 * pi / 180, 40 * pi / 180}) < 1e-13);
     // Any rotation, any previous triple, every sequence: the same rotation, each angle within
     // half a turn of the previous one.
     for (const char* name : sequences) {
@@ -330,9 +330,12 @@ TEST_CASE("continuous_euler: the same rotation, the triple nearest the previous 
         for (int i = 0; i < 200; ++i) {
             const quat r = normalized(quat{std::sin(i * 1.3), std::cos(i * 0.7), std::sin(i * 2.1 + 1), std::cos(i * 0.3)});
             const std::array<double, 3> before = {std::sin(i * 0.9) * 20, std::cos(i * 1.7) * 3, std::sin(i * 0.4) * 9};
-            const auto e = continuous_euler(r, seq, before);
+            const auto e = continuous_euler(r, seq, before).angles;
             CHECK(same_rotation(from_euler(e, seq), r, 1e-12));
             for (std::size_t k = 0; k < 3; ++k) CHECK(std::fabs(e[k] - before[k]) <= pi + 1e-12);
         }
     }
+    // At gimbal lock, as to_euler says it
+    CHECK(continuous_euler(from_euler({10, 90, 0}, zyx, angle_unit::degrees), zyx, {0, 1.5, 0}).gimbal_lock);
+    CHECK(!continuous_euler(from_euler({10, 80, 0}, zyx, angle_unit::degrees), zyx, {0, 1.5, 0}).gimbal_lock);
 }

@@ -21,7 +21,8 @@ TEST_CASE("segments, flips, renormalised and near-gimbal keys") {
     add(0.5, quat{-s, 0, 0, -s});                 // 90 about z, written in the other hemisphere
     add(1.5, quat{0, 0, 0, 1})->renormalised = true;  // 180 about z
     key* e = add(2, from_euler({0.3, std::numbers::pi / 2 - 0.01, 0}, *t.euler));
-    e->euler = std::array<double, 3>{0.3, std::numbers::pi / 2 - 0.01, 0};
+    e->given_as = rep::euler;
+    e->given = given_rotation{{0.3, std::numbers::pi / 2 - 0.01, 0, 0}, angle_unit::radians};
     const track_info info = describe(t);
     CHECK(info.keys == 4);
     CHECK(info.start == 0);

@@ -180,7 +180,8 @@ TEST_CASE("step holds the key; euler interpolates the angles linearly") {
     e.euler = zyx;
     for (double deg : {-170.0, 160.0}) {
         key k = make_key(static_cast<double>(e.keys.size()), from_euler({deg * pi / 180, 0, 0}, zyx));
-        k.euler = std::array<double, 3>{deg * pi / 180, 0, 0};
+        k.given_as = rep::euler;
+        k.given = given_rotation{{deg, 0, 0, 0}, angle_unit::degrees};
         e.keys.push_back(k);
     }
     const rotation_curve euler_curve(e, method::euler, path::shortest);

@@ -220,13 +220,14 @@ private:
         if (!time) fail(fmt::format("'{}': expected 'Frame Time: T', seconds per frame", excerpt(trim(line))));
         if (!(*time > 0)) fail(fmt::format("Frame Time {}: expected a positive number of seconds", w[2]));
         out_.frame_time = *time;
+        out_.frame_time_text = w[2];
         out_.fps = rate_of(w[2], *time);
         if (!std::isfinite(out_.fps)) fail(fmt::format("Frame Time {}: expected at most a frame a nanosecond", w[2]));
     }
 
     line_reader& lines_;
     const std::string& source_;
-    bvh_source out_{{}, "\n", {}, {}, 0, 0, 0};
+    bvh_source out_{{}, "\n", {}, {}, 0, {}, 0, 0};
     std::vector<std::size_t> open_;  // the open blocks, as indices into out_.nodes
     std::set<std::string> names_;    // the tracks' names so far
     bool expect_brace_ = false, in_joint_ = false;

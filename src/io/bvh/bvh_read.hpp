@@ -42,7 +42,8 @@ struct bvh_source {
     std::string newline;    ///< "\r\n" where the file has them, else "\n"
     std::vector<bvh_node> nodes;
     std::vector<bvh_joint> joints;
-    double frame_time = 0;  ///< as written
+    double frame_time = 0;        ///< as written
+    std::string frame_time_text;  ///< as written, to the digit ("0.0083333")
     double fps = 0;         ///< the rate keys count at (README: "BVH")
     std::size_t frames = 0;
 };

@@ -2,17 +2,21 @@
 
 #include <fmt/format.h>
 
+#include <stdexcept>
+
 #include "io/common/chunked_output.hpp"
 #include "io/common/layout.hpp"
 
 namespace keyrot {
 
 bvh_output::bvh_output(const std::optional<std::string>& target, std::ostream& out,
-                       std::shared_ptr<const bvh_source> source, double frame_time, const write_options& opts)
+                       std::shared_ptr<const bvh_source> source, std::optional<double> fps, const write_options& opts)
     : sink_(std::make_unique<detail::chunked_output>(target, out, opts.commit)),
       source_(std::move(source)),
-      frame_time_(frame_time),
-      opts_(opts) {}
+      frame_time_(source_->frame_time_text),
+      opts_(opts) {
+    if (fps && *fps != source_->fps) frame_time_.clear(), append_number(frame_time_, 1 / *fps, std::nullopt);
+}
 
 bvh_output::~bvh_output() = default;
 
@@ -24,11 +28,10 @@ void bvh_output::begin_track(const std::string& name, channels, const track_inte
 }
 
 void bvh_output::row(const table_row& s) {
-    const euler_seq& seq = source_->joints[rows_.tracks() - 1].euler;
-    const bool first = rows_.rows(rows_.tracks() - 1) == 0;
-    previous_ = first ? to_euler(s.rotation, seq).angles : continuous_euler(s.rotation, seq, previous_);
+    if (!s.own) throw std::logic_error("BVH output: a row without its joint's angles");
+    const auto& angles = s.own->values;
     const vec3 t = s.translation.value_or(vec3{});
-    const double values[7] = {s.time, previous_[0], previous_[1], previous_[2], t.x, t.y, t.z};
+    const double values[7] = {s.time, angles[0], angles[1], angles[2], t.x, t.y, t.z};
     rows_.push(values);
 }
 
@@ -47,7 +50,7 @@ void bvh_output::finish() {
     const std::string& nl = source_->newline;
     text += source_->hierarchy;
     text += "MOTION" + nl + fmt::format("Frames: {}", frames) + nl + "Frame Time: ";
-    append_number(text, frame_time_, std::nullopt);
+    text += frame_time_;
     text += nl;
     for (std::size_t k = 0; k < frames; ++k) {
         const double time = rows_.at(0, k)[0];
@@ -67,7 +70,7 @@ void bvh_output::finish() {
                     v = r[4 + kind];
                 } else {
                     for (std::size_t a = 0; a < 3; ++a)
-                        if (joint.euler.axes[a] == kind - 3) v = from_radians(r[1 + a], angle_unit::degrees);
+                        if (joint.euler.axes[a] == kind - 3) v = r[1 + a];
                 }
                 append_number(text, v, opts_.precision);
             }

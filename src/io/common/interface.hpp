@@ -102,15 +102,22 @@ struct table_info {
     bool operator==(const table_info&) const = default;
 };
 
+/// A row's rotation as its values of its own, in place of the ones the
+/// writer would work out of its quaternion: the input's own numbers at its
+/// keys, or Euler angles on the branch of the rows before them.
+struct own_rotation {
+    /// In the output's representation and angle unit (quaternions (w, x,
+    /// y, z); three values for rotation vectors and Euler angles).
+    std::array<double, 4> values{};
+    bool gimbal_lock = false;  ///< Euler angles whose third was set to 0
+};
+
 /// One output row: a sample (a resampled frame, or a key as it is), and
 /// what only the writers need of it.
 struct table_row : sample {
-    /// Euler output with --euler-continuous: the angles to write (radians),
-    /// where `continuous`. (A flag and an array rather than an optional:
-    /// rows a whole number of cache lines long made the formatting threads
-    /// wait on memory; docs/design.md.)
-    bool continuous = false;
-    std::array<double, 3> euler{};
+    /// The values to write, where the row has its own (text tables and
+    /// BVH), held as the weights are.
+    const own_rotation* own = nullptr;
     /// A CUBICSPLINE key's tangents, where the row is that key (convert),
     /// held as the weights are: a glTF output writes them beside it.
     const full_spline_key* spline = nullptr;

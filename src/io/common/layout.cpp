@@ -71,8 +71,7 @@ bool sign_free(const write_options& opts) noexcept {
     return false;
 }
 
-rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts,
-                          const std::optional<std::array<double, 3>>& euler) {
+rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts) {
     rotation_values out;
     auto put = [&out](double x) { out.v[out.size++] = x; };
     auto angle = [&opts](double radians) { return from_radians(radians, opts.angles); };
@@ -96,7 +95,7 @@ rotation_values values_of(quat q, const std::optional<vec3>& translation, const 
             break;
         }
         case rep::euler: {
-            const euler_angles e = euler ? euler_angles{*euler, false} : to_euler(q, *opts.euler);
+            const euler_angles e = to_euler(q, *opts.euler);
             for (double x : e.angles) put(angle(x));
             out.gimbal_lock = e.gimbal_lock;
             break;

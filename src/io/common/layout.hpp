@@ -71,7 +71,7 @@ struct write_options {
     std::shared_ptr<gltf_source> gltf = nullptr;
     /// glTF output of a BVH input: its hierarchy, made the nodes.
     std::shared_ptr<bvh_source> bvh = nullptr;
-    /// Euler output: each row's angles nearest the row's before (continuous_euler).
+    /// Euler output: each row's angles nearest the row's before (own_values, in app).
     bool euler_continuous = false;
     /// glTF output: LINEAR and STEP rotations as normalised 16-bit integers (--compact).
     bool compact_rotations = false;
@@ -89,10 +89,8 @@ struct rotation_values {
     std::size_t size = 0;
     bool gimbal_lock = false;
 };
-/// `translation` is used by rep::matrix4 only (zero when absent); `euler`
-/// (radians), by rep::euler in place of the canonical angles of `q`.
-rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts,
-                          const std::optional<std::array<double, 3>>& euler = std::nullopt);
+/// `translation` is used by rep::matrix4 only (zero when absent).
+rotation_values values_of(quat q, const std::optional<vec3>& translation, const write_options& opts);
 
 /// True where values_of gives q's and -q's values the same bits (q and -q
 /// are one rotation): axis-angle, rotation vectors and matrices, which

@@ -103,14 +103,7 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
     if (!k.unknown.empty()) unknown_field(k.unknown, where(source, k.at), s, warn);
     const auto& v = k.values;
     switch (k.kind) {
-        case rep::quat: {
-            out.rotation = unit_quaternion(k, s, warn, out.renormalised);
-            const quat given{v[0], v[1], v[2], v[3]};
-            if (given.w != out.rotation.w || given.x != out.rotation.x || given.y != out.rotation.y ||
-                given.z != out.rotation.z)
-                out.given_quat = given;
-            break;
-        }
+        case rep::quat: out.rotation = unit_quaternion(k, s, warn, out.renormalised); break;
         case rep::axis_angle: out.rotation = axis_angle_rotation(k, unit, source); break;
         case rep::rotvec:
             out.rotation = from_rotvec({v[0], v[1], v[2]}, unit);
@@ -118,7 +111,6 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
         case rep::euler: {
             if (!s.euler)
                 throw input_error(where(source, k.at), "Euler angles need a sequence: expected --euler SEQ or an \"euler\" field");
-            out.euler = {to_radians(v[0], unit), to_radians(v[1], unit), to_radians(v[2], unit)};
             out.rotation = from_euler({v[0], v[1], v[2]}, *s.euler, unit);
             break;
         }
@@ -132,6 +124,7 @@ key make_key(const raw_key& k, const key_settings& s, warnings& warn) {
             }
             break;
     }
+    if (k.kind != rep::matrix && k.kind != rep::matrix4) out.given = given_rotation{{v[0], v[1], v[2], v[3]}, unit};
     if (!std::isfinite(out.time))
         throw input_error(where(source, k.at), fmt::format("time {} is out of range: expected a finite time", out.time));
     if (unit == angle_unit::radians && (k.kind == rep::axis_angle || k.kind == rep::rotvec)) {

@@ -14,7 +14,17 @@ vec3 rate_values(vec3 radians, const write_options& opts) {
 }
 
 rotation_values row_values(const table_row& s, const write_options& opts, warnings& warn) {
-    const rotation_values r = values_of(s.rotation, s.translation, opts, s.continuous ? std::optional(s.euler) : std::nullopt);
+    rotation_values r;
+    if (s.own) {
+        const auto& v = s.own->values;
+        const rep rep = opts.representation;
+        r.size = rep == rep::rotvec || rep == rep::euler ? 3 : 4;
+        std::copy_n(v.begin(), r.size, r.v.begin());
+        if (rep == rep::quat && opts.order == quat_order::xyzw) r.v = {v[1], v[2], v[3], v[0]};
+        r.gimbal_lock = s.own->gimbal_lock;
+    } else {
+        r = values_of(s.rotation, s.translation, opts);
+    }
     if (r.gimbal_lock)
         warn.once("gimbal", fmt::format("gimbal lock in Euler sequence {}: the third angle is set to 0", opts.euler->name));
     return r;

@@ -53,7 +53,7 @@ public:
     }
     void row(const table_row& s) {
         if (workers_.empty()) return inline_row(s);
-        if (alone(s) && !s.continuous) return pack(s);
+        if (alone(s) && !s.own) return pack(s);
         add_full(s);
     }
     /// A row that is a sample as it is (resample's frames).
@@ -121,13 +121,14 @@ private:
         std::vector<table_row> full;  // the rows with more than a rotation
         std::vector<double> weights;  // their morph weights, one after another
         std::vector<frame_rates> rates;  // their angular velocities and accelerations, likewise
+        std::vector<own_rotation> owns;  // their own rotation values, likewise
         std::vector<track_begin> begins;
         std::vector<arc_keys> arcs;  // the slerp and squad frames' segments
 
         /// Empty, its memory kept: already mapped, unlike a new vector's.
         void clear() {
             resumed.reset();
-            rows.clear(), full.clear(), weights.clear(), rates.clear(), begins.clear(), arcs.clear();
+            rows.clear(), full.clear(), weights.clear(), rates.clear(), owns.clear(), begins.clear(), arcs.clear();
         }
     };
     struct parked_text {
@@ -159,6 +160,7 @@ private:
         // The weights the row views live as long as this call: the batch keeps them (format() views them there).
         if (!s.weights.empty()) batch_.weights.insert(batch_.weights.end(), s.weights.begin(), s.weights.end());
         if (s.rates) batch_.rates.push_back(*s.rates);  // (likewise)
+        if (s.own) batch_.owns.push_back(*s.own);
         if (batch_.rows.size() == batch_rows) hand_over();
     }
     /// Starts the workers the system gives threads to: with none, every row
@@ -289,8 +291,8 @@ private:
     void format(const batch& b, worker& w) {
         table_writer& writer = w.own ? *w.own : writer_;
         if (w.own && b.resumed) writer.begin_track(b.resumed->name, b.resumed->carried);
-        std::size_t next_begin = 0, weights = 0, rates = 0;
-        const bool weighted = !b.weights.empty() || !b.rates.empty();
+        std::size_t next_begin = 0, weights = 0, rates = 0, owns = 0;
+        const bool weighted = !b.weights.empty() || !b.rates.empty() || !b.owns.empty();
         std::optional<arc_curve> curve;  // of b.arcs[curve_of]
         std::uint32_t curve_of = packed_row::none;
         for (std::size_t i = 0; i <= b.rows.size(); ++i) {
@@ -306,13 +308,14 @@ private:
                 table_row r = p.unpacked();
                 r.rotation = curve->at(segment_fraction(b.arcs[keys].t0, b.arcs[keys].t1, p.time));
                 writer.row(r);
-            } else if (!weighted || (b.full[p.full].weights.empty() && !b.full[p.full].rates)) {
+            } else if (!weighted || (b.full[p.full].weights.empty() && !b.full[p.full].rates && !b.full[p.full].own)) {
                 writer.row(b.full[p.full]);
             } else {
                 table_row s = b.full[p.full];
                 s.weights = std::span(b.weights).subspan(weights, s.weights.size());
                 weights += s.weights.size();
                 if (s.rates) s.rates = &b.rates[rates++];
+                if (s.own) s.own = &b.owns[owns++];
                 writer.row(s);
             }
             if (!w.own) out_.maybe_flush();

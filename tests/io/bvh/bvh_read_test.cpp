@@ -133,47 +133,68 @@ TEST_CASE("BVH: a take within one block makes no temporary file; a longer one co
     }
 }
 
-/// A BVH output row: time, rotation, position.
-table_row bvh_row(double time, quat q, vec3 position) {
-    table_row s;
-    s.time = time;
-    s.rotation = q;
-    s.translation = position;
-    return s;
-}
+/// A BVH output row: time, the joint's angles in its sequence (degrees), position.
+struct bvh_row {
+    own_rotation angles;
+    table_row row;
+    bvh_row(double time, std::array<double, 3> degrees, vec3 position) : angles{{degrees[0], degrees[1], degrees[2], 0}} {
+        row.time = time;
+        row.translation = position;
+    }
+    /// The row, its angles held by this.
+    operator const table_row&() {
+        row.own = &angles;
+        return row;
+    }
+};
 
 TEST_CASE("bvh_output: tracks one after another, written as a line per frame in each joint's channel order") {
     std::ostringstream out;
-    bvh_output file(std::nullopt, out, take_source(), 0.5, {});
-    const quat z90{std::sqrt(0.5), 0, 0, std::sqrt(0.5)};  // 90 degrees about z
+    bvh_output file(std::nullopt, out, take_source(), 2, {});
     file.begin_track("Hips", {true, false, 0}, {});
-    file.row(bvh_row(0, z90, {1, 2, 3}));
-    file.row(bvh_row(0.5, quat{1, 0, 0, 0}, {4, 5, 6}));
+    file.row(bvh_row(0, {90, 0, 0}, {1, 2, 3}));
+    file.row(bvh_row(0.5, {0, 0, 0}, {4, 5, 6}));
     file.begin_track("Leg", {}, {});
-    file.row(bvh_row(0, z90, {}));
-    file.row(bvh_row(0.5, -z90, {}));
+    file.row(bvh_row(0, {0, 0, 90}, {}));
+    file.row(bvh_row(0.5, {0, -0.5, 450}, {}));
     CHECK(out.str().empty());  // nothing before the last joint's rows
     file.finish();
     const std::string text = out.str();
     REQUIRE(text.rfind("MOTION\nFrames: 2\nFrame Time: 0.5\n") != std::string::npos);
     const std::string motion = text.substr(text.rfind("Frame Time: 0.5\n") + 16);
-    // Hips: ZXY, positions first; Leg: YXZ, so z is its third channel. -q is q.
-    CHECK(motion == "1 2 3 90 0 0 0 0 90\n4 5 6 0 0 0 0 0 90\n");
+    // Hips: ZXY, positions first; Leg: YXZ, so z is its third channel; the angles as they come.
+    CHECK(motion == "1 2 3 90 0 0 0 0 90\n4 5 6 0 0 0 0 -0.5 450\n");
     CHECK(text.substr(0, text.find("MOTION")) == take.substr(0, take.find("MOTION")));
+    // A row without its angles is a caller's bug, said as one
+    bvh_output other(std::nullopt, out, take_source(), std::nullopt, {});
+    other.begin_track("Hips", {}, {});
+    CHECK_THROWS_AS(other.row(table_row{}), std::logic_error);
+}
+
+TEST_CASE("bvh_output: at the input's own rate, its Frame Time as it was written") {
+    std::ostringstream out;
+    const auto source = take_source();
+    bvh_output file(std::nullopt, out, source, source->fps, {});
+    for (const char* joint : {"Hips", "Leg"}) {
+        file.begin_track(joint, {}, {});
+        file.row(bvh_row(0, {0, 0, 0}, {}));
+    }
+    file.finish();
+    CHECK(out.str().find("Frame Time: " + source->frame_time_text + "\n") != std::string::npos);
 }
 
 TEST_CASE("bvh_output: tracks that do not make the same frames for every joint are an error") {
-    const auto written = [](const std::vector<std::vector<table_row>>& tracks) {
+    const auto written = [](const std::vector<std::vector<bvh_row>>& tracks) {
         std::ostringstream out;
-        bvh_output file(std::nullopt, out, take_source(), 0.5, {});
+        bvh_output file(std::nullopt, out, take_source(), 2, {});
         for (const auto& rows : tracks) {
             file.begin_track("", {}, {});
-            for (const table_row& r : rows) file.row(r);
+            for (bvh_row r : rows) file.row(r);
         }
         file.finish();
         return out.str();
     };
-    const table_row at0 = bvh_row(0, {}, {}), at1 = bvh_row(1, {}, {});
+    const bvh_row at0(0, {}, {}), at1(1, {}, {});
     CHECK(written({{at0, at1}, {at0, at1}}).find("Frames: 2") != std::string::npos);
     CHECK_THROWS_WITH_AS(written({{at0, at1}, {at0}}), doctest::Contains("'Leg' has 1 frames where 'Hips' has 2"), error);
     CHECK_THROWS_WITH_AS(written({{at0, at1}, {at0, at0}}), doctest::Contains("expected the same frames for every joint"),

@@ -65,7 +65,13 @@ TEST_CASE("every input representation becomes the same unit quaternion") {
     CHECK(out.keys[0].renormalised);
     CHECK(err.str().find("keyrot: warning: t.csv: quaternion norm 2") == 0);
     CHECK(out.keys[5].translation->z == 9);
-    CHECK(out.keys[3].euler.has_value());
+    // each key's values as given, in the file's unit, but a matrix's
+    CHECK(out.keys[0].given->values == std::array<double, 4>{2 * s, 0, 0, 2 * s});
+    CHECK(out.keys[1].given->values == std::array<double, 4>{0, 0, 3, 90});
+    CHECK(out.keys[3].given->values[0] == 90);
+    CHECK(out.keys[3].given->unit == angle_unit::degrees);
+    CHECK(!out.keys[4].given);
+    CHECK(!out.keys[5].given);
 }
 
 TEST_CASE("radians and frames") {
