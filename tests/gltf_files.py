@@ -99,6 +99,19 @@ class Builder:
         stored = values.astype(np.float32) if component == FLOAT else quantize(values, component)
         return dequantize(stored, component)
 
+    def decoded_times(self, times):
+        """The key times keyrot reads from accessor(times): where every stored float is the one nearest
+        k/fps for one rate (the first step's, its NTSC rate, or 24, 25, 30, 48, 50, 60 or 120), k/fps;
+        else each the shortest decimal that reads back as its float."""
+        stored = np.asarray(times, dtype=np.float64).astype(np.float32)
+        first = round(1 / (float(stored[1]) - float(stored[0]))) if len(stored) > 1 else 0
+        for fps in (first, 1000 * first / 1001, 24, 25, 30, 48, 50, 60, 120):
+            if fps > 0:
+                k = np.rint(stored.astype(np.float64) * fps)
+                if np.array_equal((k / fps).astype(np.float32), stored):
+                    return k / fps
+        return np.array([float(np.format_float_positional(t, unique=True)) for t in stored])
+
     def skeleton(self, joints, names=True):
         """A chain-and-branches hierarchy of `joints` nodes under node 0, with a skinned triangle."""
         for j in range(joints):

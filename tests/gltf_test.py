@@ -131,7 +131,7 @@ class Case:
         self.pending.append({"node": node, "path": path, "times": times, "values": values,
                              "interpolation": interp, "component": component, "stride": stride,
                              "sparse_every": sparse_every})
-        decoded_times = self.b.decoded(times)
+        decoded_times = self.b.decoded_times(times)
         decoded = self.b.decoded(np.asarray(values, dtype=float), component)
         self.tracks.setdefault(track, {})[path] = (list(decoded_times), decoded, interp)
 
@@ -186,7 +186,7 @@ def make_cases(work):
     anim["samplers"].append({"input": c.b.accessor(t[:5]), "output": c.b.accessor(np.linspace(0, 1, 5))})
     anim["channels"].insert(3, {"sampler": len(anim["samplers"]) - 1,
                                 "target": {"node": c.b.json["nodes"].index(body), "path": "weights"}})
-    body_track = {"weights": (list(c.b.decoded(t[:5])), c.b.decoded(np.linspace(0, 1, 5)).reshape(5, 1), "LINEAR"),
+    body_track = {"weights": (list(c.b.decoded_times(t[:5])), c.b.decoded(np.linspace(0, 1, 5)).reshape(5, 1), "LINEAR"),
                   "rest": [0.0, 0.0, 0.0, 1.0]}
     c.tracks = dict(list(c.tracks.items())[:3] + [("body", body_track)] + list(c.tracks.items())[3:])
     cases.append((c, "glb"))

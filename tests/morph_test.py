@@ -104,7 +104,7 @@ class Case:
     def __init__(self, name, track, times, values, interp, targets, component=G.FLOAT):
         self.name, self.track, self.interp, self.targets = name, track, interp, targets
         self.b = G.Builder()
-        self.times = list(self.b.decoded(times))
+        self.times = list(self.b.decoded_times(times))
         self.span = (self.times[0], self.times[-1])  # the node's track: all its channels' keys
         self.values = self.b.decoded(np.asarray(values, dtype=float), component)
         # (SCALAR: a weight per target per key, one after another)

@@ -20,7 +20,9 @@ to 4 decimals, and values past +-180 degrees. For each:
   take's angles.
 And keys of every other representation (CSV, JSON) written back in their
 own representation with the numbers they were given: no floating-point
-noise on 45 or 30.5.
+noise on 45 or 30.5. And glTF times: a CSV made at a rate goes to .glb and
+back with the same time column; times on no rate come back as the shortest
+decimals of their 32-bit floats, which make the same file again.
 
 Usage: round_trip_test.py KEYROT. Exit 0 when all pass, 1 otherwise, 77
 without scipy.
@@ -282,6 +284,34 @@ def check_other_representations():
           f"--method euler: its own angles, linear in the keys' numbers: {out!r}")
 
 
+def check_gltf_times(work):
+    """glTF stores times as 32-bit floats: frames made at a rate read back at their times to the digit,
+    and other times as the shortest decimals of their floats, which go back to the same floats."""
+    walk = os.path.join(os.path.dirname(KEYROT), "..", "data", "walk.csv")
+    for fps in ("24", "25", "30", "48", "50", "60", "120", "90", "29.97002997002997"):
+        table = run("resample", walk, "--fps", fps, "--rep", "quat")
+        glb = os.path.join(work, "walk.glb")
+        run("convert", "-", "--from", "csv", "-o", glb, stdin=table)
+        back = run("convert", glb, "--to", "csv", "--rep", "quat")
+        times = [line.split(",")[2] for line in table.splitlines()[1:]]
+        times_back = [line.split(",")[1] for line in back.splitlines()[1:]]
+        check(times == times_back, f"CSV at {fps} fps -> .glb -> CSV: the same time column "
+                                   f"({sum(a != b for a, b in zip(times, times_back))} of {len(times)} differ)")
+    # times on no rate: the shortest decimal of each float, which reads back as that float
+    keys = "time,qw,qx,qy,qz\n0.12582215666770935,1,0,0,0\n0.3700000047683716,0,0,0,1\n1.0000001,1,0,0,0\n"
+    glb = os.path.join(work, "odd.glb")
+    run("convert", "-", "--from", "csv", "-o", glb, stdin=keys)
+    back = run("convert", glb, "--to", "csv", "--rep", "quat")
+    times = [line.split(",")[1] for line in back.splitlines()[1:]]  # (after the node's name, "track")
+    floats = [np.float32(float(t)) for t in times]
+    check(times == ["0.12582216", "0.37", "1.0000001"] and floats == [np.float32(t) for t in (0.12582215666770935,
+                                                                                             0.3700000047683716, 1.0000001)],
+          f"times on no rate: the shortest decimals of their floats: {times}")
+    again = os.path.join(work, "again.glb")
+    run("convert", "-", "--from", "csv", "-o", again, stdin=back)
+    check(open(glb, "rb").read() == open(again, "rb").read(), "... which make the same .glb again, to the byte")
+
+
 def main():
     rng = np.random.default_rng(86)
     with tempfile.TemporaryDirectory() as work:
@@ -296,6 +326,7 @@ def main():
             past = take(style, rng, frames, unwrapped=True)
             check_take(style + "_past_180", style, bvh_text(style, past, frames), work)
         check_other_representations()
+        check_gltf_times(work)
     print(f"round_trip_test: {checks - len(failures)} of {checks} checks passed")
     return 1 if failures else 0
 

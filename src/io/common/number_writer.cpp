@@ -4,10 +4,12 @@
 #include <fmt/format.h>
 
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -295,6 +297,25 @@ char* write_number(char* out, double v, std::optional<int> precision) {
 void append_number(std::string& out, double v, std::optional<int> precision) {
     char buf[max_number_chars];
     out.append(buf, static_cast<std::size_t>(write_number(buf, v, precision) - buf));
+}
+
+double shortest_decimal(float f) noexcept {
+    if (!std::isfinite(f) || f == 0) return f;
+    const auto decimal = fmt::detail::dragonbox::to_decimal(std::fabs(f));
+    // Significand and power of ten both exact in a double: one rounding,
+    // correct. Past 10^22 the powers are not: read the digits as text.
+    static constexpr double powers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+    const int e = decimal.exponent;
+    double v;
+    if (std::abs(e) <= 22) {
+        const auto significand = static_cast<double>(decimal.significand);
+        v = e >= 0 ? significand * powers[e] : significand / powers[-e];
+    } else {
+        const std::string digits = fmt::format("{}e{}", decimal.significand, e);
+        std::from_chars(digits.data(), digits.data() + digits.size(), v);
+    }
+    return std::signbit(f) ? -v : v;
 }
 
 }  // namespace keyrot

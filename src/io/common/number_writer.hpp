@@ -17,6 +17,11 @@ namespace keyrot {
 char* write_number(char* out, double v, std::optional<int> precision);
 inline constexpr std::size_t max_number_chars = 330;  // "{:.17f}" of -1.8e308 has 327
 
+/// The double nearest the shortest decimal that reads back as `f` (what a
+/// 32-bit float written as text reads back as): 0.033333335 for the float
+/// nearest 1/30, where the float itself is 0.03333333507180214.
+double shortest_decimal(float f) noexcept;
+
 /// The text of an output row, gathered on the stack and appended to `out`
 /// in large pieces: appending to a std::string piece by piece costs more
 /// than printing the numbers. Call flush() at the end of the row.

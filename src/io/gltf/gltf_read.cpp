@@ -9,6 +9,7 @@
 #include <limits>
 #include <span>
 
+#include "io/common/number_writer.hpp"
 #include "io/gltf/gltf_accessor.hpp"
 #include "keyrot/interpolate.hpp"
 #include "keyrot/tolerances.hpp"
@@ -63,6 +64,34 @@ method method_of(const std::string& interpolation) {
     return method::slerp;
 }
 
+/// A sampler's times, stored as 32-bit floats (here widened), as the times
+/// they stand for: k/fps where every one is the float nearest k/fps for one
+/// rate (the rate of its first step, or a common one), so that frames made
+/// at a rate read back at their times to the bit; else each the shortest
+/// decimal that reads back as its float, as a text table of them would.
+void read_as_written(std::vector<double>& times) {
+    if (times.empty()) return;
+    // Each time to k/fps in one pass, while every one is the float nearest k/fps; a time that is not
+    // puts those before back (their floats are theirs) for the next rate.
+    const auto on_rate = [&](double fps) {
+        if (!(fps > 0 && std::isfinite(fps))) return false;
+        constexpr double round_by = 0x1.8p52;  // (x + it) - it is x to the nearest integer, for |x| < 2^51
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            const double frames = times[i] * fps, k = (frames + round_by) - round_by, at = k / fps;
+            if (std::fabs(frames) >= 0x1p51 || static_cast<float>(at) != static_cast<float>(times[i])) {
+                for (std::size_t j = 0; j < i; ++j) times[j] = static_cast<float>(times[j]);
+                return false;
+            }
+            times[i] = at;
+        }
+        return true;
+    };
+    const double step = times.size() > 1 ? std::round(1 / (times[1] - times[0])) : 0;
+    for (const double fps : {step, 1000 * step / 1001, 24.0, 25.0, 30.0, 48.0, 50.0, 60.0, 120.0})
+        if (on_rate(fps)) return;
+    for (double& t : times) t = shortest_decimal(static_cast<float>(t));
+}
+
 /// A sampler's input and output for a channel of `kind` (`width`: the
 /// number of morph targets, for weights), into `c` (its memory reused).
 void read_sampler(gltf_file& file, const gltf_json& sampler, const std::string& path, channel_kind kind,
@@ -90,6 +119,7 @@ void read_sampler(gltf_file& file, const gltf_json& sampler, const std::string& 
             throw input_error(at + ".input", fmt::format("time {} s at key {} is not after the previous key's {} s: "
                                                          "expected strictly increasing times",
                                                          c.times[i], i, c.times[i - 1]));
+    read_as_written(c.times);
     const std::size_t per_key = c.how == method::cubicspline ? 3 : 1;
     const char* const spline_note = per_key == 3 ? " (CUBICSPLINE: in-tangent, value, out-tangent per key)" : "";
     const std::size_t elements = size_of_accessor(file, sampler["output"], path + ".output").count;

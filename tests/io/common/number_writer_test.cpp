@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 // The shortest digits come from fmt's Dragonbox (fmt::detail, an internal):
@@ -79,6 +80,24 @@ TEST_CASE("the shortest form is laid out exactly as fmt's \"{}\"") {
         same_as_fmt(static_cast<double>(i) / 24);               // frame times
         same_as_fmt(std::trunc(unit(gen) * std::pow(10.0, exponent(gen) / 2)) + 0.0);  // whole numbers (+ 0.0: not -0)
     }
+}
+
+TEST_CASE("shortest_decimal: a float's shortest decimal, as a double") {
+    // against fmt's own shortest form of the float, read back as a double
+    std::mt19937 gen(24);
+    std::uniform_int_distribution<std::uint32_t> bits;
+    for (int i = 0; i < 200000; ++i) {
+        const float f = std::bit_cast<float>(bits(gen));
+        if (!std::isfinite(f)) continue;
+        CAPTURE(f);
+        const std::string text = fmt::format("{}", f);
+        const double want = std::strtod(text.c_str(), nullptr);
+        CHECK(shortest_decimal(f) == want);
+        CHECK(static_cast<float>(shortest_decimal(f)) == f);
+    }
+    CHECK(shortest_decimal(1.0f / 30) == 0.033333335);
+    CHECK(shortest_decimal(0.0f) == 0);
+    CHECK(shortest_decimal(-2.5e-30f) == -2.5e-30);
 }
 
 TEST_CASE("--precision rounds and drops trailing zeros, never -0") {

@@ -3,6 +3,7 @@
 // integers, byteStride), .gltf and .glb alike, errors that name the JSON
 // path; and a .glb written by open_table reads back as it was written.
 #include <doctest/doctest.h>
+#include <fmt/format.h>
 
 #include <cmath>
 #include <cstdint>
@@ -100,6 +101,30 @@ TEST_CASE("glTF: a rotation channel's keys, glTF's (x, y, z, w) as keyrot's (w, 
     std::uint32_t one = 1;
     REQUIRE(*reinterpret_cast<unsigned char*>(&one) == 1);  // put() writes little-endian here
     check_head(read(head_gltf(float_keys(), float_view, float_accessor), format::gltf));
+}
+
+TEST_CASE("glTF: times on a rate read as k/fps, other times as the shortest decimals of their floats") {
+    // Two keys' times as 32-bit floats; the second k/fps's nearest float, or not.
+    const auto times_read = [](float second) {
+        std::string bin;
+        put(bin, 0.0f);
+        put(bin, second);
+        const float s = static_cast<float>(std::sqrt(0.5));
+        for (const float v : {0.0f, 0.0f, 0.0f, 1.0f, 0.0f, 0.0f, s, s}) put(bin, v);
+        std::string json = head_gltf(bin, float_view, float_accessor);
+        json.replace(json.find(R"("max": [1])"), 10, R"("max": [)" + fmt::format("{}", second) + "]");
+        return read(json, format::gltf).tracks.at(0).keys.at(1).time;
+    };
+    for (const double fps : {24.0, 25.0, 30.0, 60.0, 90.0, 30000.0 / 1001}) {
+        CAPTURE(fps);
+        CHECK(times_read(static_cast<float>(1 / fps)) == 1 / fps);  // the double k/fps, not the float's 0.0333333351
+    }
+    CHECK(times_read(static_cast<float>(7 / 30.0)) == 7 / 30.0);  // a first step of seven frames
+    // On no rate: the float's shortest decimal, which reads back as the same float
+    CHECK(times_read(0.12582215666770935f) == 0.12582216);
+    // (a float a unit past 1/30's: no rate's)
+    CHECK(times_read(std::nextafter(1.0f / 30, 1.0f)) == 0.03333334);
+    CHECK(static_cast<float>(0.03333334) == std::nextafter(1.0f / 30, 1.0f));
 }
 
 TEST_CASE("glTF: a .glb with its BIN chunk reads as the .gltf with a data: URI") {
