@@ -170,8 +170,8 @@ expect "info nlerp speed" 0 "  0-1      15.63        125.07
   3-4      23.69        189.56" -- bash -c \
     "'$keyrot' resample '$data/wide_turn.csv' --fps 8 --method nlerp | '$keyrot' info --segments --precision 2 | grep -E '^  (0-1|3-4) '"
 expect "info flips" 0 "  0-1      90           180  (long way with --path direct)
-  keys flipped by --path shortest: 1" -- bash -c \
-    "printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n0.5,-0.7071067811865476,0,0,-0.7071067811865476\n' | '$keyrot' info --segments | grep -E '0-1|flipped'"
+  quaternion keys of the other sign than the one before: 1" -- bash -c \
+    "printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n0.5,-0.7071067811865476,0,0,-0.7071067811865476\n' | '$keyrot' info --segments | grep -E '0-1|sign'"
 expect "info names the rate frame numbers count at" 0 "  frame numbers: at 24 fps, the default (--key-fps RATE for another)
 track: 2 keys, 0 s to 0.4 s, given as quat
   frame numbers: at 30 fps, as stated" -- bash -c \
@@ -179,13 +179,22 @@ track: 2 keys, 0 s to 0.4 s, given as quat
      '$keyrot' info '$work/frames.csv' | grep 'frame numbers'; '$keyrot' info '$work/frames.csv' --key-fps 30 | sed -n 2,3p"
 # The summary: 0, 10, 40 and 45 degrees about z at 0, 1, 2 and 2.5 s step
 # by 10, 30 and 5 degrees; 24 keys of one rotation with every other sign
-# flipped list the first ten flips of twelve.
+# flipped list the first ten flips of 23 (each key against the one before);
+# one key given with the other sign lists it and the next; Euler angles
+# past +-180 flip no sign the file gave (no line); slerp has no acceleration.
 expect "info's summary" 0 "  spacing: 0.5 s to 1 s (1.2 keys/s on average)
   largest step: 30 deg, keys 1 to 2 (1 s to 2 s), 30 deg/s
-  keys flipped by --path shortest: 1, 3, 5, 7, 9, 11, 13, 15, 17, 19, ... (12 in all)" -- bash -c \
+  quaternion keys of the other sign than the one before: 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, ... (23 in all)
+  quaternion keys of the other sign than the one before: 5, 6
+0
+0" -- bash -c \
     "{ printf 'time,ax,ay,az,angle\n0,0,0,1,0\n1,0,0,1,10\n2,0,0,1,40\n2.5,0,0,1,45\n' | '$keyrot' info | grep -E 'spacing|largest'
        awk 'BEGIN { print \"time,qw,qx,qy,qz\"; for (i = 0; i < 24; i++) print i \",\" (i % 2 ? -1 : 1) \",0,0,0\" }' |
-           '$keyrot' info | grep flipped; }"
+           '$keyrot' info | grep sign
+       awk 'BEGIN { print \"time,qw,qx,qy,qz\"; for (i = 0; i < 12; i++) print i \",\" (i == 5 ? -1 : 1) \",0,0,0\" }' |
+           '$keyrot' info | grep sign
+       '$keyrot' info '$data/capture.bvh' | grep -c sign
+       '$keyrot' info '$data/capture.bvh' | grep -c acceleration; true; }"
 
 expect "help" 0 "0" -- bash -c "'$keyrot' --help >/dev/null; echo \$?"
 expect "version" 0 "keyrot 0.1.0" -- "$keyrot" --version

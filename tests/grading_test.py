@@ -84,6 +84,9 @@ with tempfile.TemporaryDirectory() as d:
         "extra.csv": axis_angle_csv([11.25 * i for i in range(9)], [i / 8 for i in range(9)]),
         # Frames 0-4 of a 4 fps grid, no times: read at 24 fps, only frame 0 matches.
         "frames4.csv": "frame,ax,ay,az,angle\n" + "".join(f"{i},0,0,1,{a!r}\n" for i, a in enumerate(ANGLES)),
+        # Columns named qw,qx,qy,qz over values in x, y, z, w order.
+        "xyzw_columns.csv": "time,qw,qx,qy,qz\n" + "".join(f"{t!r},{','.join(repr(v) for v in quat_z(a)[1:] + quat_z(a)[:1])}\n"
+                                                           for t, a in zip(TIMES, ANGLES)),
         "unreadable.csv": "when,ax,ay,az,angle\n0,0,0,1,0\n",
         "empty.csv": "",
     }
@@ -91,7 +94,7 @@ with tempfile.TemporaryDirectory() as d:
         write(os.path.join(d, name), text)
     expected = {"right.csv": "pass", "slightly_off.csv": "pass", "over.csv": "fail", "radians.csv": "fail",
                 "euler.csv": "fail", "xyzw.ndjson": "fail", "extra.csv": "fail", "frames4.csv": "fail",
-                "unreadable.csv": "unreadable", "empty.csv": "unreadable"}
+                "xyzw_columns.csv": "fail", "unreadable.csv": "unreadable", "empty.csv": "unreadable"}
     names = list(answers)
     flags = ["--euler", "XYZ"]
 
@@ -108,7 +111,11 @@ with tempfile.TemporaryDirectory() as d:
     check("--euler ZYX" in by.get("euler.csv", {}).get("reason", ""), "euler.csv: the hint names --euler ZYX")
     check("--quat-order xyzw" in by.get("xyzw.ndjson", {}).get("reason", ""),
           "xyzw.ndjson: the hint names --quat-order xyzw")
-    check("--key-fps" in by.get("frames4.csv", {}).get("reason", ""), "frames4.csv: the hint names --key-fps")
+    check("--key-fps" in by.get("frames4.csv", {}).get("reason", "") and
+          "the answer counts its frames at 24 fps (the default; it states no rate)" in by["frames4.csv"]["reason"],
+          f"frames4.csv: the hint names --key-fps and the rate the answer counts at: {by.get('frames4.csv')}")
+    check("its header should read qx,qy,qz,qw" in by.get("xyzw_columns.csv", {}).get("reason", ""),
+          f"xyzw_columns.csv: the hint says the columns hold x, y, z, w: {by.get('xyzw_columns.csv')}")
     check("no time column" in by.get("unreadable.csv", {}).get("reason", ""), "unreadable.csv: the reason is given")
     # A JSON document with its settings after its keys is read whole (not
     # streamed): its hint reads it again the other way too.
@@ -119,13 +126,13 @@ with tempfile.TemporaryDirectory() as d:
           f"a JSON document read whole: the hint names --radians: {late.stdout.strip()}")
     over = by.get("over.csv", {})
     check(abs(float(over.get("max_difference") or "nan") - 0.0101) < 1e-9, f"over.csv: max difference 0.0101: {over}")
-    check("2 pass, 6 fail, 2 unreadable" in r.stderr,
+    check("2 pass, 7 fail, 2 unreadable" in r.stderr,
           f"the count on stderr: {r.stderr.strip().splitlines()[-1:]}")
 
     r = keyrot("compare", "key.csv", *names, *flags, "--report", "json", cwd=d)
     table = json.loads(r.stdout)
     check({g["answer"]: g["grade"] for g in table["grades"]} == expected, "--report json grades as --report csv")
-    check((table["pass"], table["fail"], table["unreadable"]) == (2, 6, 2), "--report json counts")
+    check((table["pass"], table["fail"], table["unreadable"]) == (2, 7, 2), "--report json counts")
     check(all("error" in g for g in table["grades"] if g["grade"] == "unreadable"), "unreadable answers: an error member")
 
     r = keyrot("compare", "key.csv", *names, *flags, cwd=d)
@@ -142,6 +149,29 @@ with tempfile.TemporaryDirectory() as d:
           "--ignore-extra: extra rows counted, not failed")
     r = keyrot("compare", "key.csv", "frames4.csv", "--key-fps", "4", cwd=d)
     check(r.returncode == 0, "--key-fps 4 grades the frame-numbered answer right")
+
+    # Messages, tables and reports speak of the answer and the key, never of EXPECTED or ACTUAL
+    write(os.path.join(d, "two_tracks.csv"), "track,time,ax,ay,az,angle\n" + "".join(
+        f"{n},{t!r},0,0,1,{a!r}\n" for n in ("hip", "knee") for t, a in zip(TIMES, ANGLES)))
+    write(os.path.join(d, "knee_only.csv"), "track,time,ax,ay,az,angle\n" + "".join(
+        f"Knee,{t!r},0,0,1,{a!r}\n" for t, a in zip(TIMES, ANGLES)) + "".join(
+        f"elbow,{t!r},0,0,1,{a!r}\n" for t, a in zip(TIMES, ANGLES)))
+    said = ""
+    for report in ([], ["--report", "csv"], ["--report", "json"]):
+        for files in (["two_tracks.csv", "knee_only.csv"], ["two_tracks.csv", "knee_only.csv", "right.csv"],
+                      ["key.csv", "extra.csv"], ["key.csv", "frames4.csv"]):
+            r = keyrot("compare", *files, *report, cwd=d)
+            said += r.stdout + r.stderr
+    check("ACTUAL" not in said and "EXPECTED" not in said and "only in the answer" in said and
+          "missing from the answer" in said, "compare says 'answer' and 'key', never ACTUAL or EXPECTED")
+    # Track names that differ only in case: one line and a hint, not a track missing and another extra
+    r = keyrot("compare", "two_tracks.csv", "knee_only.csv", cwd=d)
+    lines = r.stderr.splitlines()
+    check(r.returncode == 1 and "knee_only.csv: track 'Knee' is the key's 'knee' in another case" in r.stderr and
+          not any("'Knee' only in the answer" in line or "'knee' missing" in line for line in lines) and
+          "track 'hip' missing from the answer" in r.stderr and "track 'elbow' only in the answer" in r.stderr and
+          "the answer's track 'Knee' is the key's 'knee' in another case" in r.stdout,
+          f"track names differing in case: a hint: {r.stdout.strip()} / {lines}")
 
     # The boundary: 0.99 and 1.01 of the tolerance, rotation and translation.
     write(os.path.join(d, "key_t.csv"), axis_angle_csv(ANGLES, translation=[0.5] * 5))
@@ -173,17 +203,25 @@ with tempfile.TemporaryDirectory() as d:
     write(os.path.join(d, "a8.csv"), "frame,time,ax,ay,az,angle\n" +
           "".join(f"{i},{i / 8!r},0,0,1,{11.25 * i!r}\n" for i in range(9)))
     r = keyrot("compare", "a8.csv", "key4.csv", cwd=d)
-    check("a8.csv: frame 1 (0.125 s): missing from ACTUAL" in r.stderr,
-          f"a row missing from ACTUAL is named under EXPECTED's file: {r.stderr.strip().splitlines()[:2]}")
+    check("a8.csv: frame 1 (0.125 s): missing from the answer" in r.stderr,
+          f"a row missing from the answer is named under the key's file: {r.stderr.strip().splitlines()[:2]}")
 
-    # Times stored as 32-bit floats (a glTF file's, written out as decimals) match their frames.
+    # Times stored as 32-bit floats (a glTF file's, written out as decimals: the floats' own values, or
+    # their shortest decimals, as keyrot writes them now) match their frames.
     times = [i / 30 for i in range(1, 6001)]
     f32 = [struct.unpack("f", struct.pack("f", t))[0] for t in times]
+
+    def shortest(f):
+        for digits in range(1, 10):
+            if struct.unpack("f", struct.pack("f", float(f"{f:.{digits}g}")))[0] == f:
+                return float(f"{f:.{digits}g}")
     write(os.path.join(d, "exact.csv"), axis_angle_csv([0.0] * len(times), times))
     write(os.path.join(d, "f32.csv"), axis_angle_csv([0.0] * len(times), f32))
+    write(os.path.join(d, "f32_shortest.csv"), axis_angle_csv([0.0] * len(times), [shortest(f) for f in f32]))
     check(any(abs(a - b) > 1e-6 for a, b in zip(times, f32)), "(some float32 times are more than 1e-6 s off)")
-    r = keyrot("compare", "exact.csv", "f32.csv", cwd=d)
-    check(r.returncode == 0, f"float32 times match their frames: {r.stdout.strip()}")
+    for name in ("f32.csv", "f32_shortest.csv"):
+        r = keyrot("compare", "exact.csv", name, cwd=d)
+        check(r.returncode == 0, f"float32 times ({name}) match their frames: {r.stdout.strip()}")
 
     # Hints outside compare.
     r = keyrot("slerp", "1,0,0,0", "0,0,0,1", "-t", "25", "-t", "50", cwd=d)

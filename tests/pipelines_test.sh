@@ -138,12 +138,12 @@ printf '{"keys": [{"time": 0, "quat": [1, 0, 0, 0]}, {"time": 1, "axis": [0, 0, 
 expect "4 fps key, 8 fps answer: only the extra rows fail" 1 "9 rows compared, 4 failed; largest difference 0 deg at frame 0 (0 s)" -- \
     "$keyrot" compare key4.csv answer8.csv
 expect "4 fps key, 8 fps answer: rates named, no difference claimed" 0 "keyrot: key4.csv counts frames at 4 fps, answer8.csv at 8 fps: rows are matched by time
-keyrot: answer8.csv: frame 1 (0.125 s): only in ACTUAL" -- bash -c \
+keyrot: answer8.csv: frame 1 (0.125 s): only in the answer" -- bash -c \
     "'$keyrot' compare key4.csv answer8.csv 2>&1 >/dev/null | head -n 2"
 expect "no word of rates where one file has no frames" 0 "" -- bash -c \
     "'$keyrot' compare <('$keyrot' slerp 1,0,0,0 0.7071067811865476,0,0,0.7071067811865476 --steps 4) key4.csv 2>&1 >/dev/null"
-expect "a misnamed track, said once" 0 "keyrot: b.json: track 'Hip' missing from ACTUAL
-keyrot: b.json: track 'Hips' only in ACTUAL" -- bash -c \
+expect "a misnamed track, said once" 0 "keyrot: b.json: track 'Hip' missing from the answer
+keyrot: b.json: track 'Hips' only in the answer" -- bash -c \
     "printf '{\"tracks\": {\"Hip\": [{\"time\": 0, \"quat\": [1,0,0,0]}, {\"time\": 1, \"quat\": [1,0,0,0]}]}}' > a.json &&
      printf '{\"tracks\": {\"Hips\": [{\"time\": 0, \"quat\": [1,0,0,0]}, {\"time\": 1, \"quat\": [1,0,0,0]}]}}' > b.json &&
      '$keyrot' compare a.json b.json 2>&1 >/dev/null; true"

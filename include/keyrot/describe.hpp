@@ -37,6 +37,7 @@ struct peak {
     std::size_t from = 0;  ///< the index of the segment's first key (the next is the segment's last)
     /// The segment's keys' frame numbers, where they have them.
     std::optional<double> frame = std::nullopt, frame_to = std::nullopt;
+    double angle_deg = 0;  ///< the angle the segment turns along the curve
 };
 
 /// The speed of a track's curve under a method: its largest angular speed
@@ -50,12 +51,15 @@ struct speed_info {
     std::size_t spike_count = 0;
 };
 
-/// A segment whose largest speed is above both of these is a spike (a
-/// flip, swapped joints or a marker drop in a captured take): so many times
-/// the median of the largest speeds of the spike_window segments around it
-/// (the segment in the middle; fewer at a track's ends; taken afresh every
-/// spike_median_every segments, as it changes slowly), and this many deg/s.
-inline constexpr double spike_times_median = 10, spike_floor_deg_s = 360;
+/// A segment is a spike (a flip, swapped joints or a marker drop in a
+/// captured take) where its largest speed is so many times the median of
+/// the largest speeds of the spike_window segments around it (the segment
+/// in the middle; fewer at a track's ends; taken afresh every
+/// spike_median_every segments, as it changes slowly): judged against the
+/// track's own motion, so a pop of 8 degrees in a take that moves 1 degree a
+/// second is one, and a steady fast spin is none; and where it turns more
+/// than spike_least_deg, as less would not show.
+inline constexpr double spike_times_median = 10, spike_least_deg = 1;
 inline constexpr std::size_t spike_window = 65, spike_median_every = 16;
 
 struct track_info {
@@ -71,13 +75,20 @@ struct track_info {
     double largest_start = 0, largest_end = 0;  ///< its keys' times
     /// Every segment, one per pair of neighbouring keys, where asked for.
     std::vector<segment_info> segments;
-    key_list flipped;       ///< keys negated by --path shortest
+    /// Quaternion keys given with the other sign than the quaternion key
+    /// before (--path shortest turns them back): each against its
+    /// neighbour, so one key given flipped lists that key and the next.
+    key_list flipped;
     key_list renormalised;  ///< keys whose norm was off by > tol::unit_norm
     key_list near_gimbal;   ///< Euler keys within near_gimbal_deg of gimbal lock
     /// Some key was given with a sign (not a matrix, whose quaternion's
-    /// sign is keyrot's choice): only then do `flipped` and
-    /// `direct_long_way` say something about the input.
+    /// sign is keyrot's choice): only then does `direct_long_way` say
+    /// something about the input.
     bool signed_keys = false;
+    /// Some key was given as a quaternion: only then does `flipped` (Euler
+    /// angles past +-180 degrees, or an axis-angle past 180, change the
+    /// sign of the quaternion keyrot makes of them, which the file never had).
+    bool quaternion_keys = false;
     /// The curve's speed (two keys or more; once finish() has come).
     std::optional<speed_info> speed;
     /// Keys are evenly spaced: the gaps differ by no more than rounding.
@@ -127,7 +138,7 @@ private:
     track_info info_;
     quat previous_{};  ///< the previous key's rotation
     double previous_time_ = 0;
-    quat aligned_{};  ///< the previous key as --path shortest plays it
+    rep previous_given_as_ = rep::quat;
 };
 
 /// What `keyrot info` prints of a track, every segment kept, its speeds

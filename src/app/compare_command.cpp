@@ -15,6 +15,7 @@
 
 #include "app/commands.hpp"
 #include "app/compare_files.hpp"
+#include "app/compare_hints.hpp"
 #include "app/plan.hpp"
 #include "app/plots.hpp"
 #include "ground/thread_start.hpp"
@@ -64,60 +65,6 @@ std::string json_name(std::string_view name) { return json_quote(printable(name)
 
 std::optional<double> worst_angle(const comparison_summary& c) {
     return c.worst ? c.worst->angle_deg : std::nullopt;
-}
-
-/// The answers keyrot looks at for a likely cause: no more keys than a
-/// homework file, as each reading of another way costs a reading of it.
-constexpr std::size_t hint_keys = 100000;
-
-/// Where rows are both missing and extra: a frame rate that could explain
-/// it. Where matched rows differ: another reading of the answer (degrees
-/// for radians or the reverse, the other quaternion order, another Euler
-/// sequence) under which every row passes.
-std::string likely_cause(const options& o, const input_source& key_src, const surveyed_file& key,
-                         const input_source& src, const surveyed_file& answer, const comparison_summary& c) {
-    if (c.missing > 0 && c.extra > 0 && (key.counted || answer.counted))
-        return fmt::format("rows missing and extra: frame numbers without times count at {} fps unless the file "
-                           "states a rate; --key-fps RATE reads them at another",
-                           o.key_fps.value_or(default_key_fps));
-    const bool some_differ = c.worst && *c.worst->angle_deg > o.tol_deg;
-    if (!some_differ || answer.keys > hint_keys) return "";
-    const auto& given = answer.given;
-    std::vector<std::pair<options, std::string>> readings;
-    if (given.contains(rep::axis_angle) || given.contains(rep::rotvec) || given.contains(rep::euler)) {
-        options other = o;
-        other.radians = !o.radians;
-        readings.emplace_back(other, o.radians ? "read as degrees (without --radians)" : "read as radians (--radians)");
-    }
-    if (given.contains(rep::quat)) {
-        options other = o;
-        other.order = o.order == quat_order::wxyz ? quat_order::xyzw : quat_order::wxyz;
-        other.order_given = true;
-        readings.emplace_back(other, fmt::format("read with --quat-order {}", to_string(other.order)));
-    }
-    if (given.contains(rep::euler))
-        for (const std::string_view axes : {"ZYX", "XYZ", "ZXY", "YXZ", "XZY", "YZX", "ZXZ", "ZYZ", "XYX", "XZX",
-                                            "YXY", "YZY", "xyz", "zyx", "zxy", "yxz", "xzy", "yzx", "zxz", "zyz",
-                                            "xyx", "xzx", "yxy", "yzy"}) {
-            const euler_seq seq = *parse_euler_seq(axes);
-            if (answer.euler && seq.name == answer.euler->name) continue;
-            options other = o;
-            other.euler = seq;
-            readings.emplace_back(other, fmt::format("read with --euler {}", axes));
-        }
-    for (const auto& [other, how] : readings) {
-        try {
-            // (a document held whole holds keys made the first way: it is read again)
-            std::ostringstream quiet;
-            warnings warn(quiet, src.source());
-            const std::optional<surveyed_file> again =
-                answer.whole ? std::optional(survey_file(other, src, warn)) : std::nullopt;
-            if (compare_files(o, key_src, key, other, src, again ? *again : answer, nullptr, nullptr).failed == 0)
-                return fmt::format("every row is within tolerance when the answer is {}", how);
-        } catch (const error&) {  // that reading is not a cause
-        }
-    }
-    return "";
 }
 
 /// An answer's first pass: its survey, or the error that stopped it.
@@ -172,10 +119,19 @@ public:
         if (c.frame_rates)
             print_error(err_, fmt::format("{} counts frames at {:.6g} fps, {} at {:.6g} fps: rows are matched by time",
                                           key_, c.frame_rates->first, answer_, c.frame_rates->second));
-        // A track missing from either file is said once, not row by row.
+        // A track missing from either file is said once, not row by row; one
+        // named as the key's but for case, once as that.
+        for (const auto& [of_key, of_answer] : tracks_named_in_another_case(c)) {
+            if (whole_tracks_.size() < max_reasons)
+                print_error(err_, fmt::format("{}: track '{}' is the key's '{}' in another case: expected the key's "
+                                              "track names (its rows are missing and extra)",
+                                              answer_, of_answer, of_key));
+            whole_tracks_.insert(of_key), whole_tracks_.insert(of_answer);
+        }
         for (const auto& [names, where] :
-             {std::pair(&c.missing_tracks, "missing from ACTUAL"), std::pair(&c.extra_tracks, "only in ACTUAL")}) {
+             {std::pair(&c.missing_tracks, "missing from the answer"), std::pair(&c.extra_tracks, "only in the answer")}) {
             for (const std::string& name : *names) {
+                if (whole_tracks_.contains(name)) continue;
                 if (whole_tracks_.size() < max_reasons)
                     print_error(err_, fmt::format("{}: track '{}' {}", answer_, name, where));
                 whole_tracks_.insert(name);
@@ -199,7 +155,7 @@ public:
         if (o_.report == format::csv) return csv_row(r);
         if (o_.report == format::json) return json_row(r);
         if (r.pass() || whole_tracks_.contains(r.track)) return;
-        // A row missing from ACTUAL is at EXPECTED's frame; a matched row
+        // A row missing from the answer is at the key's frame; a matched row
         // names its frame only where both files number frames alike.
         const bool missing = !r.angle_deg && !r.extra;
         const std::string place =

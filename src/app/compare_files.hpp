@@ -31,14 +31,16 @@ struct surveyed_file {
 surveyed_file survey_file(const options& o, const input_source& src, warnings& warn);
 
 /// Pass 2: the key (read with `key_flags`) against an answer (read with
-/// `answer_flags`), both surveyed before; `begin` is told what is known
-/// before the first row (missing tracks, frame rates), and each row goes to
-/// `row` as it is settled. Warnings were said in pass 1. Throws
-/// input_error for a reading under which a key cannot be made.
+/// `answer_flags`, and each of its keys made otherwise by `answer_as`,
+/// where given), both surveyed before; `begin` is told what is known before
+/// the first row (missing tracks, frame rates), and each row goes to `row`
+/// as it is settled. Warnings were said in pass 1. Throws input_error for a
+/// reading under which a key cannot be made.
 comparison_summary compare_files(const options& key_flags, const input_source& key_src, const surveyed_file& key,
                                  const options& answer_flags, const input_source& answer_src,
                                  const surveyed_file& answer,
                                  const std::function<void(const comparison_summary&)>& begin,
-                                 const comparer::row_sink& row);
+                                 const comparer::row_sink& row,
+                                 const std::function<void(keyrot::key&)>& answer_as = nullptr);
 
 }  // namespace keyrot::detail

@@ -166,13 +166,15 @@ std::string info_text(const described_file& file, std::optional<int> precision, 
             const speed_info& v = *t.speed;
             out += fmt::format("  speed ({}): up to {} deg/s at {}, mean {} deg/s\n", to_string(v.how),
                                num(v.fastest.value), place(v.fastest), num(v.mean));
-            out += fmt::format("  acceleration ({}): up to {} deg/s^2 at {}\n", to_string(v.how),
-                               num(v.most_accelerated.value), place(v.most_accelerated));
+            // (slerp and step turn at one rate through a segment: no acceleration to speak of)
+            if (v.how != method::slerp && v.how != method::step)
+                out += fmt::format("  acceleration ({}): up to {} deg/s^2 at {}\n", to_string(v.how),
+                                   num(v.most_accelerated.value), place(v.most_accelerated));
             std::vector<std::string> where;
             for (const peak& p : v.spikes) where.push_back(place(p));
             if (v.spike_count > v.spikes.size()) where.push_back(fmt::format("... ({} in all)", v.spike_count));
-            out += fmt::format("  speed spikes (over {} times the speed around and {} deg/s): {}\n",
-                               spike_times_median, spike_floor_deg_s, where.empty() ? "none" : fmt::format("{}", fmt::join(where, ", ")));
+            out += fmt::format("  speed spikes (over {} times the speed around, turning over {} deg): {}\n",
+                               spike_times_median, spike_least_deg, where.empty() ? "none" : fmt::format("{}", fmt::join(where, ", ")));
         }
         for (std::size_t i = 0; i < t.segments.size(); ++i) {
             const segment_info& s = t.segments[i];
@@ -181,7 +183,8 @@ std::string info_text(const described_file& file, std::optional<int> precision, 
             out += fmt::format("  {:<7}  {:<11}  {}{}\n", fmt::format("{}-{}", i, i + 1), num(s.angle_deg),
                                num(s.speed_deg_s), long_way ? "  (long way with --path direct)" : "");
         }
-        if (t.signed_keys) out += fmt::format("  keys flipped by --path shortest: {}\n", key_list_text(t.flipped));
+        if (t.quaternion_keys)
+            out += fmt::format("  quaternion keys of the other sign than the one before: {}\n", key_list_text(t.flipped));
         out += fmt::format("  keys renormalised: {}\n", key_list_text(t.renormalised));
         out += fmt::format("  Euler keys within {} deg of gimbal lock: {}\n", near_gimbal_deg,
                            key_list_text(t.near_gimbal));
@@ -260,7 +263,7 @@ std::string info_json(const described_file& file, bool segments, const bvh_sourc
             for (const std::string& c : bvh->joints[n].channels) names.push_back(json_quote(c));
             track.raw("channels", json_array(names)).text("euler", bvh->joints[n].euler.name);
         }
-        track.raw("flipped", t.signed_keys ? json_key_list(t.flipped) : "null");
+        track.raw("flipped", t.quaternion_keys ? json_key_list(t.flipped) : "null");
         track.raw("renormalised", json_key_list(t.renormalised)).raw("near_gimbal_lock", json_key_list(t.near_gimbal));
         tracks += (n ? ",\n" : "\n") + track.object();
     }
@@ -273,7 +276,9 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
     const bool as_json = o.to == format::json || (o.output && format_of_path(*o.output) == format::json);
     std::string text;
     int status = 0;
-    for (const std::string& name : input_names(o)) {
+    const std::vector<std::string> inputs = input_names(o);
+    std::size_t failed = 0;
+    for (const std::string& name : inputs) {
         try {
             const input_source src(name, in);
             warnings warn(err, src.source());
@@ -285,8 +290,10 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
         } catch (const error& e) {
             print_error(err, e.what());
             status = 2;
+            ++failed;
         }
     }
+    if (failed && inputs.size() > 1) print_error(err, fmt::format("{} of {} files failed", failed, inputs.size()));
     emit(o, text, out);
     return status;
 }

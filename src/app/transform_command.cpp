@@ -366,11 +366,14 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
     if (o.progress) err << '\n';
     if (stop) std::rethrow_exception(stop);
     int status = 0;
+    std::size_t failed = 0;
     for (std::size_t i = 0; i < inputs.size(); ++i) {
         err << messages[i];
         out << reports[i];
         status = std::max(status, statuses[i]);
+        failed += statuses[i] != 0;
     }
+    if (failed) print_error(err, fmt::format("{} of {} files failed", failed, inputs.size()));
     if (batch) {
         try {
             batch->finish();

@@ -12,7 +12,7 @@
 namespace keyrot {
 namespace {
 
-constexpr int expected_side = 0, actual_side = 1;
+constexpr int key_side = 0, answer_side = 1;
 
 /// Whether frame numbers name the same moments in both tracks: stated (or
 /// assumed) rates are equal; where a rate is implied by frames that carry
@@ -56,52 +56,52 @@ double track_survey::rounding() const { return std::max(stored_rounding_, float3
 
 double counted_rate(const track& t) { return track_survey(t).counted_rate(); }
 
-comparer::comparer(const std::vector<track_survey>& expected, const std::vector<track_survey>& actual,
+comparer::comparer(const std::vector<track_survey>& key_tracks, const std::vector<track_survey>& answer_tracks,
                    const tolerances& tol, extra_rows extra, row_sink row)
     : tol_(tol), extra_(extra), row_(std::move(row)) {
-    std::unordered_map<std::string_view, const track_survey*> in_actual;  // (names are unique within a file)
-    for (const track_survey& a : actual) in_actual.emplace(a.name(), &a);
+    std::unordered_map<std::string_view, const track_survey*> in_answer;  // (names are unique within a file)
+    for (const track_survey& a : answer_tracks) in_answer.emplace(a.name(), &a);
     // One track against one, either unnamed: the same track (a glTF file
     // names the node of an unnamed track).
-    if (expected.size() == 1 && actual.size() == 1 && expected[0].name() != actual[0].name() &&
-        (expected[0].name().empty() || actual[0].name().empty())) {
-        renamed_ = std::pair(actual[0].name(), expected[0].name());
-        in_actual = {{expected[0].name(), &actual[0]}};
+    if (key_tracks.size() == 1 && answer_tracks.size() == 1 && key_tracks[0].name() != answer_tracks[0].name() &&
+        (key_tracks[0].name().empty() || answer_tracks[0].name().empty())) {
+        renamed_ = std::pair(answer_tracks[0].name(), key_tracks[0].name());
+        in_answer = {{key_tracks[0].name(), &answer_tracks[0]}};
     }
-    for (const track_survey& e : expected) {
+    for (const track_survey& e : key_tracks) {
         pairing& p = pairs_[e.name()];
-        p.in_expected = true;
+        p.in_key = true;
         summary_.weights = summary_.weights || e.any_weights();
         order_.push_back(e.name());
-        const auto named = in_actual.find(e.name());
-        if (named == in_actual.end()) {
+        const auto named = in_answer.find(e.name());
+        if (named == in_answer.end()) {
             summary_.missing_tracks.push_back(e.name());
             continue;
         }
         const track_survey& a = *named->second;
-        p.in_actual = true;
+        p.in_answer = true;
         // Frame numbers at different rates are different times: matched by time.
         p.by_frame = same_frames(e, a);
         p.rounding = std::max(e.rounding(), a.rounding());
         if (!p.by_frame && !summary_.frame_rates && e.any_frame() && a.any_frame())
             summary_.frame_rates = std::pair(e.counted_rate(), a.counted_rate());
     }
-    for (const track_survey& a : actual) {
+    for (const track_survey& a : answer_tracks) {
         if (renamed_) break;
         pairing& p = pairs_[a.name()];
-        if (p.in_expected) continue;
-        p.in_actual = true;
+        if (p.in_key) continue;
+        p.in_answer = true;
         order_.push_back(a.name());
         summary_.extra_tracks.push_back(a.name());
     }
 }
 
-void comparer::expected(const std::string& track, key k) { add(expected_side, track, std::move(k)); }
-void comparer::actual(const std::string& track, key k) { add(actual_side, track, std::move(k)); }
+void comparer::from_key(const std::string& track, key k) { add(key_side, track, std::move(k)); }
+void comparer::from_answer(const std::string& track, key k) { add(answer_side, track, std::move(k)); }
 
 void comparer::add(int side, const std::string& track, key&& k) {
-    const auto it = pairs_.find(side == actual_side && renamed_ && track == renamed_->first ? renamed_->second : track);
-    if (it == pairs_.end() || !it->second.in_expected || !it->second.in_actual) return put(unmatched(track, k, side));
+    const auto it = pairs_.find(side == answer_side && renamed_ && track == renamed_->first ? renamed_->second : track);
+    if (it == pairs_.end() || !it->second.in_key || !it->second.in_answer) return put(unmatched(track, k, side));
     it->second.waiting[side].push_back(std::move(k));
     ++waiting_[side];
     settle(it->first, it->second);
@@ -117,17 +117,17 @@ void comparer::settle(const std::string& name, pairing& p) {
         const key& a = a_keys.front();
         const bool by_frame = p.by_frame && e.frame && a.frame;
         const double near = std::max(tol::match_time, std::fabs(e.time) * p.rounding);
-        int settled = expected_side;  // or actual_side, or both (-1)
+        int settled = key_side;  // or answer_side, or both (-1)
         if (by_frame ? *e.frame == *a.frame : std::fabs(e.time - a.time) <= near) {
             put(matched(name, e, a));
             settled = -1;
         } else if (by_frame ? *e.frame < *a.frame : e.time < a.time) {
-            put(unmatched(name, e, expected_side));
+            put(unmatched(name, e, key_side));
         } else {
-            put(unmatched(name, a, actual_side));
-            settled = actual_side;
+            put(unmatched(name, a, answer_side));
+            settled = answer_side;
         }
-        for (const int side : {expected_side, actual_side})
+        for (const int side : {key_side, answer_side})
             if (settled == -1 || settled == side) p.waiting[side].pop_front(), --waiting_[side];
     }
 }
@@ -135,7 +135,7 @@ void comparer::settle(const std::string& name, pairing& p) {
 const comparison_summary& comparer::finish() {
     for (const std::string& name : order_) {
         pairing& p = pairs_.at(name);
-        for (const int side : {expected_side, actual_side}) {
+        for (const int side : {key_side, answer_side}) {
             for (const key& k : p.waiting[side]) put(unmatched(name, k, side));
             waiting_[side] -= p.waiting[side].size();
             p.waiting[side].clear();
@@ -171,7 +171,7 @@ row_difference comparer::matched(const std::string& name, const key& e, const ke
                             std::optional<double>& difference, std::string_view what) {
         if (!e_value) return;
         if (!a_value) {
-            if (r.problem.empty()) r.problem = fmt::format("{} missing from ACTUAL", what);
+            if (r.problem.empty()) r.problem = fmt::format("{} missing from the answer", what);
             return;
         }
         difference = norm(*e_value - *a_value);
@@ -185,7 +185,7 @@ row_difference comparer::matched(const std::string& name, const key& e, const ke
                           std::string_view unit) {
         if (!tol || !e_value) return;
         if (!a_value) {
-            if (r.problem.empty()) r.problem = fmt::format("{} missing from ACTUAL", what);
+            if (r.problem.empty()) r.problem = fmt::format("{} missing from the answer", what);
             return;
         }
         difference = from_radians(norm(*e_value - *a_value), angle_unit::degrees);
@@ -198,7 +198,7 @@ row_difference comparer::matched(const std::string& name, const key& e, const ke
     rate(tol_.acceleration, er.acceleration, ar.acceleration, r.acceleration, "angular acceleration", "deg/s^2");
     if (!e.weights.empty() && r.problem.empty()) {
         if (a.weights.size() != e.weights.size())
-            r.problem = fmt::format("{} morph weights in ACTUAL: expected {}", a.weights.size(), e.weights.size());
+            r.problem = fmt::format("{} morph weights in the answer: expected {}", a.weights.size(), e.weights.size());
         else {
             double worst = 0;
             for (std::size_t j = 0; j < e.weights.size(); ++j) worst = std::max(worst, std::fabs(e.weights[j] - a.weights[j]));
@@ -211,29 +211,29 @@ row_difference comparer::matched(const std::string& name, const key& e, const ke
 }
 
 row_difference comparer::unmatched(const std::string& name, const key& k, int side) const {
-    if (side == expected_side)
-        return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, std::nullopt, "missing from ACTUAL", false};
+    if (side == key_side)
+        return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, std::nullopt, "missing from the answer", false};
     return {name, k.frame, k.time, std::nullopt, std::nullopt, std::nullopt, std::nullopt,
-            extra_ == extra_rows::fail ? "only in ACTUAL" : "", true};
+            extra_ == extra_rows::fail ? "only in the answer" : "", true};
 }
 
-comparison compare_tracks(const std::vector<track>& expected, const std::vector<track>& actual, const tolerances& tol,
+comparison compare_tracks(const std::vector<track>& key_tracks, const std::vector<track>& answer_tracks, const tolerances& tol,
                           extra_rows extra) {
     comparison out;
     std::vector<track_survey> e_surveys, a_surveys;
     std::unordered_map<std::string_view, const track*> by_name;
-    for (const track& t : expected) e_surveys.emplace_back(t);
-    for (const track& t : actual) a_surveys.emplace_back(t), by_name.emplace(t.name, &t);
+    for (const track& t : key_tracks) e_surveys.emplace_back(t);
+    for (const track& t : answer_tracks) a_surveys.emplace_back(t), by_name.emplace(t.name, &t);
     comparer c(e_surveys, a_surveys, tol, extra, [&](const row_difference& r) { out.rows.push_back(r); });
     std::unordered_set<std::string_view> fed;
-    const auto feed = [&](const track& t, bool is_expected) {
-        for (const key& k : t.keys) is_expected ? c.expected(t.name, k) : c.actual(t.name, k);
+    const auto feed = [&](const track& t, bool is_key) {
+        for (const key& k : t.keys) is_key ? c.from_key(t.name, k) : c.from_answer(t.name, k);
     };
-    for (const track& e : expected) {
+    for (const track& e : key_tracks) {
         feed(e, true);
         if (const auto a = by_name.find(e.name); a != by_name.end()) feed(*a->second, false), fed.insert(e.name);
     }
-    for (const track& a : actual)
+    for (const track& a : answer_tracks)
         if (!fed.contains(a.name)) feed(a, false);
     static_cast<comparison_summary&>(out) = c.finish();
     return out;

@@ -54,6 +54,7 @@ void track_describer::settle(const peak& fastest, double angle) {
     speed_time_ += angle;
     if (fastest.value > v.fastest.value) v.fastest = fastest;
     window_.push_back(fastest);
+    window_.back().angle_deg = angle;
     // A full window judges the segment in its middle (the first one, those before it too).
     if (window_.size() == spike_window) {
         judge_until(dropped_ + spike_window / 2 + 1, false);
@@ -74,7 +75,7 @@ void track_describer::judge_until(std::size_t end, bool last) {
     speed_info& v = *info_.speed;
     for (; judged_ < end; ++judged_) {
         const peak& p = window_[judged_ - dropped_];
-        if (p.value > spike_times_median * median_ && p.value > spike_floor_deg_s && v.spike_count++ < key_list::listed)
+        if (p.value > spike_times_median * median_ && p.angle_deg > spike_least_deg && v.spike_count++ < key_list::listed)
             v.spikes.push_back(p);
     }
 }
@@ -100,9 +101,9 @@ void track_describer::add(const key& k) {
         info.given_as.push_back(k.given_as);
     if (k.renormalised) info.renormalised.add(i);
     info.signed_keys = info.signed_keys || (k.given_as != rep::matrix && k.given_as != rep::matrix4);
+    info.quaternion_keys = info.quaternion_keys || k.given_as == rep::quat;
     if (k.given_as == rep::euler && euler_ && gimbal_distance(k.rotation, *euler_) <= to_radians(near_gimbal_deg, angle_unit::degrees))
         info.near_gimbal.add(i);
-    quat aligned = k.rotation;
     if (i > 0) {
         const double gap = k.time - previous_time_;
         segment_info s;
@@ -118,12 +119,10 @@ void track_describer::add(const key& k) {
         info.longest_gap = std::max(info.longest_gap, gap);
         if (keep_segments_) info.segments.push_back(s);
         last_segment_ = s;
-        if (dot(aligned_, aligned) < 0) {
-            aligned = -aligned;
+        if (k.given_as == rep::quat && previous_given_as_ == rep::quat && dot(previous_, k.rotation) < 0)
             info.flipped.add(i);
-        }
     }
-    aligned_ = aligned;
+    previous_given_as_ = k.given_as;
     if (steady_) {
         // One rate through each segment, slerp's its angle (the long way
         // where --path direct takes it) over its time: no curve needed, as

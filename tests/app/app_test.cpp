@@ -163,8 +163,9 @@ TEST_CASE("--jobs: files in parallel, messages in input order") {
     for (const auto& f : files) args.push_back(f.c_str());
     const result r = run_with(parse(args));
     CHECK(r.status == 2);
+    // (then how many of them failed)
     CHECK(r.err == "keyrot: " + files[1] + ":2: column 'qw': expected a finite number, got 'x'\n" + "keyrot: " + files[6] +
-                       ":2: column 'qw': expected a finite number, got 'x'\n");
+                       ":2: column 'qw': expected a finite number, got 'x'\n" + "keyrot: 2 of 8 files failed\n");
     for (int i = 0; i < 8; ++i) CHECK(fs::exists(s.dir / "out" / fmt::format("f{}.csv", i)) == (i != 1 && i != 6));
     CHECK(scratch::read(s.dir / "out" / "f7.csv") == scratch::read(s.dir / "out" / "f0.csv"));
 }

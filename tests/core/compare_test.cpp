@@ -48,9 +48,9 @@ TEST_CASE("rows are matched by frame when both have one, else by time") {
     c = compare_tracks({named("", {at(0.5, quat{})})}, {named("", {at(0.5000005, quat{}, 12)})}, {});
     CHECK(c.failed == 0);  // within 1e-6 s
     c = compare_tracks({named("", {at(0.5, quat{})})}, {named("", {at(0.50001, quat{})})}, {});
-    CHECK(c.failed == 2);  // one missing from ACTUAL, one only in ACTUAL
-    CHECK(c.rows[0].problem == "missing from ACTUAL");
-    CHECK(c.rows[1].problem == "only in ACTUAL");
+    CHECK(c.failed == 2);  // one missing from the answer, one only in the answer
+    CHECK(c.rows[0].problem == "missing from the answer");
+    CHECK(c.rows[1].problem == "only in the answer");
 }
 
 TEST_CASE("frames that carry their times are matched by frame only where the grids agree") {
@@ -65,7 +65,7 @@ TEST_CASE("frames that carry their times are matched by frame only where the gri
     CHECK(c.frame_rates->second == 8);
     CHECK(c.failed == 4);  // the 4 frames of 8 fps between the 4 fps ones
     CHECK(c.rows.size() == 9);
-    CHECK(std::count_if(c.rows.begin(), c.rows.end(), [](const auto& r) { return r.problem == "only in ACTUAL"; }) == 4);
+    CHECK(std::count_if(c.rows.begin(), c.rows.end(), [](const auto& r) { return r.problem == "only in the answer"; }) == 4);
     // at one rate, times written to four decimals still match by frame
     c = compare_tracks({named("", {at(1 / 24.0, turned, 1), at(2, turned, 48)})},
                        {named("", {at(0.0417, turned, 1), at(2, turned, 48)})}, {});
@@ -91,7 +91,7 @@ TEST_CASE("tracks are matched by name; translations are checked when expected") 
     CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {close_t})}, {}).failed == 0);
     CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {far_t})}, {}).failed == 1);
     CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {at(0, quat{})})}, {}).rows[0].problem ==
-          "translation missing from ACTUAL");
+          "translation missing from the answer");
     CHECK(compare_tracks({named("hip", {with_t})}, {named("knee", {with_t})}, {}).failed == 2);
     key scaled = with_t, rescaled = with_t;
     scaled.scale = vec3{1, 1, 1};
@@ -99,7 +99,7 @@ TEST_CASE("tracks are matched by name; translations are checked when expected") 
     CHECK(compare_tracks({named("hip", {scaled})}, {named("hip", {rescaled})}, {}).rows[0].problem ==
           "scale differs by 0.01 (tolerance 0.001)");
     CHECK(compare_tracks({named("hip", {scaled})}, {named("hip", {with_t})}, {}).rows[0].problem ==
-          "scale missing from ACTUAL");
+          "scale missing from the answer");
     CHECK(compare_tracks({named("hip", {with_t})}, {named("hip", {rescaled})}, {}).failed == 0);
     const quat turned = exp(vec3{0, 0, 0.5});
     const auto reordered = compare_tracks({named("hip", {with_t}), named("knee", {at(0, turned)})},
@@ -117,11 +117,11 @@ TEST_CASE("tracks are matched by name; translations are checked when expected") 
     CHECK(compare_tracks({named("", {with_t}), named("b", {with_t})}, {named("a", {with_t})}, {}).matched == 0);
 }
 
-TEST_CASE("each key matches the key a scan of ACTUAL would find") {
-    // The reference is the plain scan: the key of ACTUAL with the same frame
+TEST_CASE("each key matches the key a scan of the answer would find") {
+    // The reference is the plain scan: the key of the answer with the same frame
     // when both have one, else within 1e-6 s. Keys lie near a 24 fps grid,
     // some by frame number alone, some by a time up to 3 us off the grid,
-    // so near misses and exact 1e-6 steps are common; each ACTUAL key has
+    // so near misses and exact 1e-6 steps are common; each answer key has
     // its own angle, so a row's angle tells which key it matched.
     const auto scan = [](const std::vector<key>& keys, const key& k) -> std::optional<std::size_t> {
         for (std::size_t i = 0; i < keys.size(); ++i) {
@@ -157,7 +157,7 @@ TEST_CASE("each key matches the key a scan of ACTUAL would find") {
             CAPTURE(round);
             CAPTURE(i);
             const auto j = scan(actual, expected[i]);
-            // the rows come in time order: the expected key's, after ACTUAL's own before it
+            // the rows come in time order: the expected key's, after the answer's own before it
             while (row < c.rows.size() && c.rows[row].extra) ++row;
             REQUIRE(row < c.rows.size());
             CHECK(c.rows[row].time == expected[i].time);

@@ -32,7 +32,7 @@ TEST_CASE("segments, flips, renormalised and near-gimbal keys") {
     CHECK(std::fabs(info.segments[0].speed_deg_s - 180) <= 1e-12);
     CHECK(info.segments[0].direct_long_way);
     CHECK(std::fabs(info.segments[1].angle_deg - 90) <= 1e-12);
-    CHECK(info.flipped.first == std::vector<std::size_t>{1});
+    CHECK(info.flipped.first == std::vector<std::size_t>{1, 2});  // each against the one before
     CHECK(info.renormalised.first == std::vector<std::size_t>{2});
     CHECK(info.near_gimbal.first == std::vector<std::size_t>{3});  // 0.57 degrees from lock
     // the summary: the largest of the segments, and the gaps between keys
