@@ -72,7 +72,8 @@ void add_output_flags(CLI::App& sub, options& o, raw_flags& f) {
                  "glTF output: rotations as normalised 16-bit integers, half the bytes, each within 0.0035 deg of "
                  "exact (default: 32-bit floats)");
     sub.add_flag("--euler-continuous", o.euler_continuous,
-                 "Euler output continuous from frame to frame (always for BVH), not in canonical ranges");
+                 "Euler output continuous from frame to frame, not in canonical ranges (always for BVH; the keys "
+                 "of Euler input in the output's sequence keep their own angles)");
     sub.add_option("--settings-line", f.settings_line,
                    fmt::format("CSV, NDJSON: a first line of the settings the output was written with, always "
                                "or never (default: {}; the columns' names say what keyrot needs to read it back)",

@@ -65,7 +65,11 @@ std::optional<given_rotation> own_values::own_of(rep as, const given_rotation& g
             if (angle > turn || norm(axis) == 0) return std::nullopt;
             if (angle > half_turn) angle = turn - angle, axis = -1.0 * axis;  // (exact: Sterbenz)
             if (angle == 0) return given_rotation{{1, 0, 0, 0}, g.unit};
-            if (const double n = norm(axis); std::fabs(n - 1) > tol::unit_rounding) axis = (1 / n) * axis;
+            if (std::fabs(norm(axis) - 1) > tol::unit_rounding) {
+                // Divided in extended precision: each component then the double nearest its exact value.
+                const long double x = axis.x, y = axis.y, z = axis.z, n = std::sqrt(x * x + y * y + z * z);
+                axis = {static_cast<double>(x / n), static_cast<double>(y / n), static_cast<double>(z / n)};
+            }
             if (angle == half_turn && !canonical_at_half_turn(axis.x, axis.y, axis.z)) axis = -1.0 * axis;
             v = {axis.x, axis.y, axis.z, angle};
             return out;

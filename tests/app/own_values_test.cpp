@@ -6,7 +6,6 @@
 
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include "helpers.hpp"
@@ -16,8 +15,6 @@ using namespace keyrot;
 using namespace keyrot::detail;
 
 namespace {
-
-constexpr double pi = std::numbers::pi;
 
 /// A key at `time` given as `values` of kind `as` (degrees), its rotation
 /// as keyrot reads them (Euler angles in `seq`).
@@ -77,7 +74,7 @@ TEST_CASE("own values: each key in its own representation, written with the numb
         const auto w = written(own, {given_key(0, rep::axis_angle, {0, 0, 1, 45}), given_key(1, rep::axis_angle, {0, 0, 1, -30.5}),
                                      given_key(2, rep::axis_angle, {0, 1, 0, 270.25}), given_key(3, rep::axis_angle, {0, 0, 2, 17.3}),
                                      given_key(4, rep::axis_angle, {0, -1, 0, 180}), given_key(5, rep::axis_angle, {0, 0, 1, 0}),
-                                     given_key(6, rep::axis_angle, {0, 0, 1, 725})},
+                                     given_key(6, rep::axis_angle, {0, 0, 1, 725}), given_key(7, rep::axis_angle, {1, 1, 1, 10})},
                                4);
         CHECK(w[0] == std::vector<double>{0, 0, 1, 45});
         CHECK(w[1] == std::vector<double>{-0.0, -0.0, -1, 30.5});
@@ -86,6 +83,9 @@ TEST_CASE("own values: each key in its own representation, written with the numb
         CHECK(w[4] == std::vector<double>{-0.0, 1, -0.0, 180});
         CHECK(w[5] == std::vector<double>{1, 0, 0, 0});
         CHECK(!w[6]);  // past a turn: the writer's
+        // divided by its length to the nearest double: 1/sqrt(3) is 0.57735026918962576451, nearer
+        // 0.5773502691896257 (3.3e-17 off) than 0.5773502691896258 (7.8e-17; Python's decimal module)
+        CHECK(w[7] == std::vector<double>{0.5773502691896257, 0.5773502691896257, 0.5773502691896257, 10});
     }
     SUBCASE("rotation vectors up to half a turn long") {
         own_values own(output(rep::rotvec), format::csv);

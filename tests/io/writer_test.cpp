@@ -100,7 +100,8 @@ TEST_CASE("the names that state a unit or an order read back as they say") {
     o.settings.euler = parse_euler_seq("ZYX");
     const auto only_key = [&](std::string_view text, format f) { return read(std::string(text), f, o).tracks.at(0).keys.at(0); };
     const quat quarter_z{s, 0, 0, s};
-    for (const auto& [text, f] : std::vector<std::pair<std::string, format>>{
+    // (a named pair, not a structured binding: CAPTURE's lambda cannot take one in clang 14)
+    for (const auto& text_in : std::vector<std::pair<std::string, format>>{
              {"time,ax,ay,az,angle_rad\n0,0,0,1,1.5707963267948966\n", format::csv},
              {"time,rx_deg,ry_deg,rz_deg\n0,0,0,90\n", format::csv},
              {"time,e1_rad,e2_rad,e3_rad\n0,1.5707963267948966,0,0\n", format::csv},
@@ -108,17 +109,17 @@ TEST_CASE("the names that state a unit or an order read back as they say") {
              {R"({"time": 0, "euler_rad": [1.5707963267948966, 0, 0]})", format::ndjson},
              {R"({"time": 0, "quat_xyzw": [0, 0, 0.7071067811865476, 0.7071067811865476]})", format::ndjson},
              {R"({"keys": [{"time": 0, "rotvec_rad": [0, 0, 1.5707963267948966]}]})", format::json}}) {
-        CAPTURE(text);
-        CHECK(keyrot::test::same_rotation(only_key(text, f).rotation, quarter_z, 1e-15));
+        CAPTURE(text_in.first);
+        CHECK(keyrot::test::same_rotation(only_key(text_in.first, text_in.second).rotation, quarter_z, 1e-15));
     }
     // a unit stated by one angle's name is stated by all, and one unit at that
-    for (const auto& [text, f] : std::vector<std::pair<std::string, format>>{
+    for (const auto& text_in : std::vector<std::pair<std::string, format>>{
              {"time,ax,ay,az,angle_rad,wx,wy,wz\n0,0,0,1,1,0,0,0\n", format::csv},
              {"time,ax,ay,az,angle_rad,wx_deg,wy_deg,wz_deg\n0,0,0,1,1,0,0,0\n", format::csv},
              {R"({"time": 0, "axis": [0, 0, 1], "angle_rad": 1, "angular_velocity": [0, 0, 0]})", format::ndjson},
              {R"({"time": 0, "quat": [1, 0, 0, 0], "quat_xyzw": [0, 0, 0, 1]})", format::ndjson}}) {
-        CAPTURE(text);
-        CHECK_THROWS_AS(only_key(text, f), input_error);
+        CAPTURE(text_in.first);
+        CHECK_THROWS_AS(only_key(text_in.first, text_in.second), input_error);
     }
 }
 
