@@ -30,6 +30,8 @@ import subprocess
 import sys
 import tempfile
 
+from tally import check, summary
+
 try:
     import pandas as pd
 except ImportError:  # pragma: no cover
@@ -42,17 +44,6 @@ for tool in ("mlr", "csvjson", "jq", "awk"):
 
 KEYROT = os.path.abspath(sys.argv[1])
 DATA = os.path.abspath(sys.argv[2])
-checks, failures = 0, []
-
-
-def check(condition, message):
-    global checks
-    checks += 1
-    if condition:
-        print("ok: " + message)
-    else:
-        failures.append(message)
-        print("FAIL: " + message)
 
 
 def keyrot(*args, stdin=None):
@@ -290,8 +281,7 @@ def main():
     records_read_back(walk, head_turn)
 
     shutil.rmtree(work)
-    print(f"{checks - len(failures)} passed, {len(failures)} failed")
-    return 1 if failures else 0
+    return summary("readers_test")
 
 
 if __name__ == "__main__":

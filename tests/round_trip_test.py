@@ -36,6 +36,8 @@ import subprocess
 import sys
 import tempfile
 
+from tally import check, summary
+
 try:
     import numpy as np
     from scipy.spatial.transform import Rotation
@@ -44,17 +46,6 @@ except ImportError:  # pragma: no cover
     sys.exit(77)
 
 KEYROT = os.path.abspath(sys.argv[1])
-failures, checks = [], 0
-
-
-def check(condition, message):
-    global checks
-    checks += 1
-    if condition:
-        print("ok: " + message)
-    else:
-        failures.append(message)
-        print("FAIL: " + message)
 
 
 def run(*args, stdin=None):
@@ -327,8 +318,7 @@ def main():
             check_take(style + "_past_180", style, bvh_text(style, past, frames), work)
         check_other_representations()
         check_gltf_times(work)
-    print(f"round_trip_test: {checks - len(failures)} of {checks} checks passed")
-    return 1 if failures else 0
+    return summary("round_trip_test")
 
 
 if __name__ == "__main__":
