@@ -49,7 +49,8 @@ public:
     virtual void key(raw_key&& k) = 0;
 };
 
-/// Throws input_error for a track name with control characters.
+/// Throws input_error for a track name with control characters or that is
+/// not UTF-8.
 void check_track_name(const std::string& name, const std::string& where);
 
 /// A track name none of `taken` has, which it then takes: `name` itself,
