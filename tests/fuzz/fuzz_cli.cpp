@@ -2,9 +2,6 @@
 // first byte picks the command and flags, the rest is standard input. Any
 // exception but keyrot::error, a sanitizer report, or a message that is not
 // one printable "keyrot: " line is a finding.
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +10,7 @@
 
 #include "app/app.hpp"
 #include "check.hpp"
+#include "standard_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace keyrot;
@@ -36,16 +34,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.precision = (pick & 0x08u) ? std::optional<int>(3) : std::nullopt;
     o.tol_deg = (pick & 0x08u) ? 0 : 0.5;  // reduce: exact keys only, or many dropped
     o.max_frames = 1e5;  // keeps each run short; the limit itself is tested elsewhere
-    // Standard input is a file in memory, which keyrot reads in place: no
-    // temporary file on disk for every run.
-    static const int input = [] {
-        const int fd = ::memfd_create("fuzz_cli stdin", 0);
-        fuzz::require(fd >= 0 && ::dup2(fd, STDIN_FILENO) == STDIN_FILENO);
-        return fd;
-    }();
-    const auto rest = static_cast<off_t>(size - 1);
-    fuzz::require(::ftruncate(input, 0) == 0 && ::pwrite(input, data + 1, size - 1, 0) == rest &&
-                  ::lseek(input, 0, SEEK_SET) == 0);
+    fuzz::set_standard_input(reinterpret_cast<const char*>(data) + 1, size - 1);
     std::ostringstream out, err;
     int status = 2;
     try {

@@ -3,9 +3,6 @@
 // writes, keyrot reads. Any exception but keyrot::error, a sanitizer
 // report, or a message that is not one printable "keyrot: " line is a
 // finding.
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <iostream>
@@ -13,22 +10,7 @@
 
 #include "app/app.hpp"
 #include "check.hpp"
-
-namespace {
-
-/// Standard input as a file in memory holding `bytes`, which keyrot reads in place.
-void set_stdin(const char* bytes, std::size_t size) {
-    static const int input = [] {
-        const int fd = ::memfd_create("fuzz_gltf stdin", 0);
-        keyrot::fuzz::require(fd >= 0 && ::dup2(fd, STDIN_FILENO) == STDIN_FILENO);
-        return fd;
-    }();
-    keyrot::fuzz::require(::ftruncate(input, 0) == 0 && ::pwrite(input, bytes, size, 0) == static_cast<ssize_t>(size) &&
-                          ::lseek(input, 0, SEEK_SET) == 0);
-    std::cin.clear();
-}
-
-}  // namespace
+#include "standard_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace keyrot;
@@ -38,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.from = data[0] & 2u ? format::glb : format::gltf;
     o.to = format::glb;
     o.max_frames = 1e5;  // keeps each run short
-    set_stdin(reinterpret_cast<const char*>(data) + 1, size - 1);
+    fuzz::set_standard_input(reinterpret_cast<const char*>(data) + 1, size - 1);
     std::ostringstream out, err;
     int status = 2;
     try {
@@ -49,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (status != 0) return 0;
     // The output reads back.
     const std::string written = out.str();
-    set_stdin(written.data(), written.size());
+    fuzz::set_standard_input(written.data(), written.size());
     options back;
     back.cmd = command::convert;
     back.from = format::glb;
