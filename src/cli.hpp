@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The command line: CLI11 definitions that fill an options struct.
 #include <iosfwd>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The command line's flags: each command's CLI11 definitions, and the
 // options struct the raw values become.

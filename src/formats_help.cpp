@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "formats_help.hpp"
 
 #include <fmt/format.h>

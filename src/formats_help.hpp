@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // `keyrot help formats`: what a file needs, per representation.
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // keyrot's entry point: parse the command line, run, map errors to status 2.
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // "Did you mean": the word a slip of the keyboard was probably meant to be.
 #include <cstddef>

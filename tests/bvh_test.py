@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """BVH input and output against scipy's reading of Euler angles.
 
 Generated files: every rotation channel order on the joints of one file

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # CLI tests: run the built keyrot as a user would and check output and status.
 # Usage: cli_test.sh KEYROT DATA_DIR
 set -u

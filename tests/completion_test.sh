@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The bash completion (src/dist/keyrot.bash) offers exactly the commands,
 # flags and flag values that keyrot's own help lists, and files where a
 # file goes: the two cannot drift apart.

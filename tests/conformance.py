@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Conformance of keyrot against an independent implementation of the spec.
 
 Random tracks are written in every input representation and format, run

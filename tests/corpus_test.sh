@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The bad-input corpus (tests/bad: NAME, or NAME.args alone for a command
 # line, with NAME.err the one line keyrot must print) and the good corpus
 # (tests/good: variants keyrot must accept quietly), plus inputs too large to

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Every example the README and the user guide show with its output, run and compared.
 
 An example is a fenced block without a language whose lines begin with

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Shared by the shell tests: sourced, not run. Needs $work (a scratch
 # directory). Counts into $passed and $failed; `summary` prints the closing
 # line and returns the status.

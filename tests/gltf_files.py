@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """glTF 2.0 test files built from numpy arrays, written as .glb, as .gltf
 with a .bin beside it, or as .gltf with a base64 data: URI.
 

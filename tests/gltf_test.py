@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """glTF input against an independent reading of the glTF 2.0 specification.
 
 Generated files (skinned skeletons of 20 to 60 joints; LINEAR, STEP and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Runs the Khronos glTF Validator (tests/npm, installed by `.ci/deps test`)
 // on each file named, its .bin and images read from beside it. Prints each
 // file's errors and warnings; exits 1 if any file has an error.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Grading a class at once: `keyrot compare KEY ANSWER...`.
 
 The key and every answer are written here, with Python's own math (a turn

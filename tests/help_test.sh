@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The help teaches what is true: every example in a command's help runs on
 # the files of data/, the columns and fields `keyrot help formats` lists are
 # the ones keyrot writes and reads, and a bad topic is one line, status 2.

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # What a user installs: `cmake --install` puts the program, its man page,
 # its bash completion and the library with its CMake package where they
 # belong; a program of one's own (examples/slerp_between) builds against
@@ -25,6 +26,14 @@ for file in bin/keyrot share/man/man1/keyrot.1.gz share/bash-completion/completi
     lib/cmake/keyrot/keyrot-config.cmake lib/cmake/keyrot/keyrot-config-version.cmake \
     share/doc/keyrot/copyright share/doc/keyrot/changelog.gz share/doc/libkeyrot-dev/copyright; do
     [[ -f $prefix/$file ]] && ok "installed $file" || fail "not installed: $file"
+done
+# The copyright files hold the MIT licence, as LICENSE words it.
+licence=$(sed -n '/^Permission/,$p' "$source_dir/LICENSE" | tr -s ' \n' ' ')
+for package in keyrot libkeyrot-dev; do
+    copyright=$prefix/share/doc/$package/copyright
+    grep -q '^License: MIT$' "$copyright" && [[ $(sed -n '/^ Permission/,$p' "$copyright" | sed 's/^ \.$//' |
+        tr -s ' \n' ' ') == " $licence" ]] && ok "$package's copyright holds the MIT licence" ||
+        fail "$package's copyright: not the MIT licence of LICENSE"
 done
 # The installed headers are the public ones, and they include nothing that is not installed.
 for header in "$prefix"/include/keyrot/*.hpp; do

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The layers of docs/design.md hold in the code: each folder includes only
 # what stands below it, the threads of io/fast are included by io/open.cpp
 # alone, a format folder includes no other format but the JSON parser, the
-# picture writer (io/svg) knows no rotation, and no source file is over 500
-# lines.
+# picture writer (io/svg) knows no rotation, no source file is over 500
+# lines, and every one names its licence.
 # Usage: layers_test.sh SOURCE_DIR
 set -uo pipefail
 cd "$1" || exit 2
@@ -53,6 +54,15 @@ none "io/svg draws figures: it includes no format and nothing above it" \
 
 long=$(find src include -name '*.cpp' -o -name '*.hpp' | xargs wc -l | awk '$2 != "total" && $1 > 500')
 none "no source file over 500 lines" "$long"
+
+# Every source file names its licence on its first line (after a #! line).
+unlicensed=$(find src include tests examples .ci CMakeLists.txt -type f \( -name '*.cpp' -o -name '*.hpp' -o -name '*.py' \
+    -o -name '*.sh' -o -name '*.js' -o -name '*.cmake' -o -name '*.cmake.in' -o -name '*.bash' -o -name CMakeLists.txt -o -path '.ci/*' \) \
+    -not -path 'tests/npm/node_modules/*' -not -path 'tests/fuzz/corpus/*' -not -path 'tests/bad/*' -not -path 'tests/good/*' |
+    while read -r file; do
+        head -2 "$file" | sed '/^#!/d' | head -1 | grep -q 'SPDX-License-Identifier: MIT$' || echo "$file"
+    done)
+none "every source file says its licence (SPDX-License-Identifier: MIT)" "$unlicensed"
 
 echo "$failures failed"
 ((failures == 0))

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """glTF morph target weights against the glTF 2.0 specification written out here.
 
 Generated files: a weights-only file in the manner of Khronos' SimpleMorph

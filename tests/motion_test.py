@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Smooth motion: --method cubic against scipy, and every method's
 angular velocity and acceleration against finite differences of its frames.
 

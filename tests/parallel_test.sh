@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # The README's recipe for many files on many machines, run on this one
 # (-S :): GNU parallel with keyrot as the per-file worker. Every output is
 # the one keyrot writes by itself, the job log holds each file's exit

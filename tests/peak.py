@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Peak resident memory of a keyrot run, measured from outside by GNU time."""
 import os
 import re

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """keyrot's pictures as a person sees them: rendered by headless Chromium.
 
 For `keyrot plot` (--rep angle, euler and quat, --method slerp and nlerp,

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Pipelines: keyrot's outputs read back into keyrot with the same meaning
 # and no flags, through real pipes, FIFOs, process substitution and batches.
 # Usage: pipelines_test.sh KEYROT DATA_DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """keyrot's default outputs, as the tools people pair it with read them.
 
 Each command's output with no flags beyond the format (resample, convert,

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """How many times keyrot reads each input, counted with strace.
 
 The bytes read from every descriptor opened on the input, divided by its

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """keyrot reduce against its guarantee, checked independently.
 
 Dense tracks are generated here (motion-capture-like noise at 120 Hz, a

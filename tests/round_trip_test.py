@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Round trips give back the user's own numbers.
 
 BVH takes in the styles of the files people have (CMU's: a root of six

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Output safety under faults: nothing written where it does not belong,
 # nothing lost, failures never reported as success.
 # Usage: safety_test.sh KEYROT DATA_DIR

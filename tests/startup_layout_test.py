@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The code a small run executes is laid out together at the front of the
 program (src/dist/startup.ld; docs/design.md, "Start-up"), and the list
 still names the code there is: checked in the link map of the build.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """A test script's checks: each printed as it is made, the failures kept for the summary."""
 checks, failures = 0, []
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Slerp between two rotations with keyrot's library: the identity and a
 // quarter turn about z (the textbook example: halfway is 45 degrees), in five steps, printed
 // as axis-angle in degrees.

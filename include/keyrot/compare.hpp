@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Grading: match two sets of tracks row by row and measure the differences,
 // whole (compare_tracks) or as the keys are read (comparer).

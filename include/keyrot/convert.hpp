@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Conversions between unit quaternions and the other rotation representations.
 // Every angle here is in radians; units are the readers' and writers' business.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What `keyrot info` tells about a track, learnt a key at a time.
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // keyrot's exceptions: bad input data, and options that cannot apply.
 // The program catches them once, at the top, and prints each as one line.

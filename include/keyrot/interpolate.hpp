@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Interpolation methods: the kernels (slerp, nlerp, squad) and the curve
 // through a track's keys that resample evaluates segment by segment.

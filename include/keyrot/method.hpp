@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The interpolation methods and paths by name: what --method and --path
 // choose, and what a glTF sampler states.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // How fast a rotation turns at an instant: its angular velocity and
 // acceleration, in the body frame (what a gyroscope on the object reads)

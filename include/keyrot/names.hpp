@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Enumerations by the names the command line and the files give them: one
 // table of {value, name} per enumeration, next to it, and one parse and one

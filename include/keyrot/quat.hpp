@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Quaternions, 3-vectors and 3x3 matrices: the value types every stage shares.
 //

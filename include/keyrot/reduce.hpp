@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Key reduction: the fewest of a track's keys that, interpolated as the
 // track is played, stay within a tolerance of every key.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The frame grid: every frame k with k/fps inside a track's key range,
 // produced as the track's keys arrive.

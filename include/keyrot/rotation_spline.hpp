@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The rotation spline with continuous angular velocity and acceleration
 // (method::cubic): the curve of scipy's RotationSpline, after N. Mayorov,

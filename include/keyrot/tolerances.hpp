@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Every tolerance keyrot uses, in one place.
 namespace keyrot::tol {

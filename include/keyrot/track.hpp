@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Keys and tracks: what keyrot works on (key, with a unit quaternion, and
 // track, its keys in time order), and the rows made of them (sample).

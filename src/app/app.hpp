@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The commands, run on an options struct with the streams passed in, so the
 // whole program can be run in-process by the tests.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The commands, a file each (src/app/*_command.cpp), which run() calls.
 #include <iosfwd>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // compare: a key against one answer row by row, or against several as a
 // grade table, within tolerances, for grading. The files are read as
 // compare_files reads them, a row at a time; reports are written as rows

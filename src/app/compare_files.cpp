@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "app/compare_files.hpp"
 
 #include <sstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // compare's reading: each file surveyed in a first pass, then both read
 // again in step, their rows matched as they come (keyrot::comparer), so

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "app/compare_hints.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Why an answer fails, where keyrot can tell: the likely cause compare
 // names beside the grade (never changing it).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // info: what an input holds, track by track: a summary of each, read a key
 // at a time; with --segments, every segment's angle and speed as well.
 #include <fmt/format.h>

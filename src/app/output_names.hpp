@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where --output-dir writes each input's output, checked before anything is
 // written: no two inputs to one name, no output over an input.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "app/own_values.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What a round trip gives back: each row's rotation values where they are
 // the input's own, or follow the input's own Euler branch.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What the commands make of the options before they read: the settings of
 // reading, sampling and writing, and where inputs and output are.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // plot: the tracks of the inputs as an SVG picture, a panel per track (and
 // one of its speed with --speed). Each input is read twice, a key at a
 // time: for its tracks' spans, then to draw them; the picture is written

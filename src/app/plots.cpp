@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "app/plots.hpp"
 
 #include <fmt/format.h>

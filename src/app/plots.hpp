@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The pictures' panels: a track's rotation curves as its method plays them
 // (plot), a comparison's differences over time (compare --plot), and what

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "app/row_sources.hpp"
 
 #include <fmt/format.h>

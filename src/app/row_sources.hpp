@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What makes a track's rows from its keys (row_source), one kind per
 // command: resample's frame grid, convert's keys, reduce's kept keys; and

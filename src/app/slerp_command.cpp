@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // slerp: two rotations interpolated at the parameters asked, as a table.
 #include <fmt/format.h>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "app/track_rows.hpp"
 
 #include <algorithm>

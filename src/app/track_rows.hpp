@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A stream of keys made into rows as they arrive, track by track; and the
 // tracks of an input read apart made into rows on threads of their own.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // resample, convert and reduce: an input streams in two passes (validate,
 // then make the rows as the keys arrive, by the command's row_source), or
 // in one into a file; interleaved tracks, and JSON documents the streaming

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "app/usage_error.hpp"
 
 namespace keyrot {

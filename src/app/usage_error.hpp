@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The command line's errors, and the core's option errors said in flags.
 #include <string>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "core/arc_screen.hpp"
 
 #include <algorithm>

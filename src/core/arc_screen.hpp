@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A quick test of keys against the slerp arc between two keys, for reduce's
 // probes: most keys are far inside or far outside the tolerance, and only

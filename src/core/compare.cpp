@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/compare.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // KEYROT_FMA_CLONES marks a hot function built twice, with the CPU's fused
 // multiply-add instructions and without (x86-64's baseline has none, and

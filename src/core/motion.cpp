@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/motion.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/quat.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/reduce.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/resample.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/rotation_spline.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/track.hpp"
 
 #include <fmt/format.h>

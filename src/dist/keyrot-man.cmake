@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Writes keyrot's man page from the program's own help, so that the two are
 # never written twice: a section per command (its --help: each flag a .TP
 # entry, the examples set as typed), the formats (keyrot help formats), and

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Bash completion for keyrot: commands, each command's flags, the values of
 # enumerated flags, and files. tests/completion_test.sh checks it against
 # the program's own --help, so that the two cannot drift apart.

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """Writes src/dist/startup.ld: the code a small run of keyrot executes, to be
 laid out together at the front of the program (docs/design.md, "Start-up").
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/error.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Warnings held back while a way of reading an input is tried.
 #include <sstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Text, on the ground floor with the errors: UTF-8, trimming, and numbers
 // as CSV cells and the command line write them; the text of a system error.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Internal: keyrot's threads only make it faster. Where the system refuses
 // one (a limit on processes, or on address space, from which each thread's

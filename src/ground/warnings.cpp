@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "ground/warnings.hpp"
 
 #include "keyrot/error.hpp"

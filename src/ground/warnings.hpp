@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // How keyrot speaks on stderr: an error as one line "keyrot: <what>", and
 // warnings about an input, each kind once.

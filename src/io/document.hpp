@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // An input read whole into tracks (what resample and convert read when
 // tracks interleave or a JSON document is not streamed, and what the tests

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/open.hpp"
 
 #include "io/bvh/bvh_read.hpp"

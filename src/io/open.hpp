@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where a command opens its input and output in a format: the format's key
 // reader or table writer, with the fast paths (src/io/fast) behind them.

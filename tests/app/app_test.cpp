@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The commands run in-process, with streams and a scratch directory.
 #include "app/app.hpp"
 

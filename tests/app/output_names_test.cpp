@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // --output-dir's names: each input's output there with the output format's
 // extension, and the checks made before anything is written.
 #include "app/output_names.hpp"

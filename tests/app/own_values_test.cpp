@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The values a row writes of its own: the input's numbers at its keys,
 // Euler angles on the input's branch between them.
 #include "app/own_values.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // keyrot's benchmark (run by hand, not by the tests): generates quaternion
 // tracks (numbers in shortest form, and in numpy's savetxt form; keys 5
 // frames apart, and dense keys at 120 Hz as motion capture gives), runs

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The floor under keyrot's main job (run by keyrot_bench, or by hand):
 // what `keyrot resample track.csv -o out.csv` would cost with no math at
 // all. One thread parses every number of the input with keyrot's own CSV

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """keyrot beside gltfpack on the glTF job, by hand:
   tests/bench/gltf_bench.py KEYROT [--runs N] [--baseline OTHER_KEYROT] [--gltfpack PATH]
 A rig of 60 joints with 20,000 keys each at 120 Hz (a rotation per joint,

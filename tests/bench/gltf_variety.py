@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """glTF files with every kind of channel keyrot's reader merges, for
 same_output.sh to run two builds on:
   tests/bench/gltf_variety.py DIR

@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """keyrot reduce beside glTF-Transform's `resample` and gltfpack, by hand:
   npm install --prefix /tmp/peers @gltf-transform/cli gltfpack
   tests/bench/reduce_peers.py KEYROT /tmp/peers/node_modules/.bin

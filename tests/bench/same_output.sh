@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Two keyrot binaries give the same bytes: standard output, standard error,
 # files written with -o, and exit status, on data/, tests/good, tests/bad
 # (with their command lines), glTF files of every kind of channel

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The accuracy sweep shared by accuracy_test.cpp (which asserts the bounds)
 // and accuracy_report.cpp (which prints the table in the README): each

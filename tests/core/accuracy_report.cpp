@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Prints the worst error of each conversion and interpolation per angle
 // decade against the __float128 reference (the README's accuracy table).
 // Usage: accuracy_report [SAMPLES]   (default 200 per band and measurement)

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Accuracy against the __float128 reference, decade by decade from 1e-100
 // rad to pi, near the half turn and near gimbal lock.
 #include <doctest/doctest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // arc_screen: its verdicts against the exact comparison reduce makes
 // (slerp_segment's point, geodesic_angle in degrees, <= the tolerance).
 #include <doctest/doctest.h>

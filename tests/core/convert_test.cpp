@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "keyrot/convert.hpp"
 
 #include <doctest/doctest.h>

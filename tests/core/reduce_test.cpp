@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // track_reducer: which keys a few small tracks keep, worked out by hand.
 #include <doctest/doctest.h>
 

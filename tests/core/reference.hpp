@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A __float128 reference (113-bit significand, about 34 digits) for the
 // accuracy suite: the same conversions written out plainly in quad

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Invariants every fuzz target checks: a finding aborts.
 #include <cmath>

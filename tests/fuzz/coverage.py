@@ -1,4 +1,5 @@
 #!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
 """The coverage each fuzz target reaches on its checked-in corpus, checked.
 
 For each target of tests/fuzz/floors: libFuzzer's coverage points ("cov")

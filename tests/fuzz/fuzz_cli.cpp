@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: a whole command run in-process on a byte buffer. The
 // first byte picks the command and flags, the rest is standard input. Any
 // exception but keyrot::error, a sanitizer report, or a message that is not

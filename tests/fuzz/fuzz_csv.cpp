@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: the CSV reader and key validation on arbitrary bytes.
 // Any exception but keyrot::error, any sanitizer report, or a key that is
 // not a finite unit quaternion is a finding; so is a table whose rows read

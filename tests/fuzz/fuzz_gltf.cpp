@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: glTF input (the first byte picks .glb or .gltf, and
 // resample or convert), written as a .glb, which must read back: what keyrot
 // writes, keyrot reads. Any exception but keyrot::error, a sanitizer

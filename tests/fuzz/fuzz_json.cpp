@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // libFuzzer target: the JSON and NDJSON readers and key validation,
 // flat_json against nlohmann-json, and the streaming JSON reader against
 // the whole document's.

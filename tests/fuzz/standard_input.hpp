@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Standard input for one fuzz run: a file in memory that keyrot reads as it
 // reads any file on its standard input (in place, or through std::cin when

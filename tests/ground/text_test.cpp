@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The ground floor's text utilities: numbers, UTF-8.
 #include "ground/text.hpp"
 

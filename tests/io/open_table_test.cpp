@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // open_table: the rows of a large output, formatted on other threads and
 // written in chunks, are the bytes the writer gives on one thread.
 #include "io/open.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Writing CSV, JSON and NDJSON tables, and reading them back.
 #include "io/common/interface.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Shared test helpers. doctest::Approx defaults to ~1e-5, far too loose for
 // rotations, so every comparison here names its tolerance.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // flat_json against nlohmann-json, the parser it stands in for.
 #include <bit>

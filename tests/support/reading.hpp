@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What the reader and writer tests share: an input read as the commands
 // read it (io/document.hpp), its first error, a table written.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/bvh/bvh_read.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // BVH motion capture: a joint hierarchy, then one line of channel values
 // per frame. Each joint with channels is a track: its rotation channels

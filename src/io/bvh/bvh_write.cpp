@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/bvh/bvh_write.hpp"
 
 #include <fmt/format.h>

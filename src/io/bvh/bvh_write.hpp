@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // BVH output: the hierarchy of the BVH input kept as it was, then the rows
 // of its joints' tracks as frame lines, each joint's angles in its own

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/bvh/column_store.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A BVH take's values, a column per channel, kept in a temporary file so
 // that reading a long take does not grow with it.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/bvh/track_store.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The rows of a BVH output, which come a joint at a time and go out a frame
 // (every joint's row) at a time, kept in a temporary file so that writing

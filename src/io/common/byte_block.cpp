@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/byte_block.hpp"
 
 #include <sys/mman.h>

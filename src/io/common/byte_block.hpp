@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Bytes read into memory whole (a .glb file).
 #include <cstddef>

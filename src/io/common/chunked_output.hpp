@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Where a table's text goes: a file or a stream, a chunk at a time, each
 // chunk written by a second thread while the next one fills, or batches

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/columns.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A table's columns by name, and a row's cells into a key by them: a CSV
 // header and its rows, and a JSON record of the same names (the rows of a

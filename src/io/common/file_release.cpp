@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/file_release.hpp"
 
 #include <fcntl.h>

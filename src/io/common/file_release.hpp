@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Removing a replaced output without waiting for its blocks to be freed.
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/format.hpp"
 
 #include <nlohmann/json.hpp>

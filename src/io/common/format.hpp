@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The file formats by name, by extension, and by content.
 #include <array>

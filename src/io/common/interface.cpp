@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/interface.hpp"
 
 #include <fmt/format.h>

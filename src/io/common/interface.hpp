@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What the commands see of the formats: how keys are read (read_options,
 // key_reader, raw_key_sink) and how tables are written (table_info,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // How rotations are laid out in files, shared by every reader and writer:
 // quaternion order, the CSV columns of each representation, the values

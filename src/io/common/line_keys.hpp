@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Readers whose keys each take a piece of text of their own (a CSV row, an
 // NDJSON line, a key object of a streamed JSON document), so that the

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/line_reader.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Lines of a stream, for the line-based readers.
 #include <cstddef>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/number_writer.hpp"
 #include "io/common/layout.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Numbers as text, fast: every number keyrot writes passes here, millions
 // of them for a large output (docs/design.md says why not fmt's own).

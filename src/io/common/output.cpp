@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/output.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Writing results so that a failure never leaves a partial file behind.
 #include <cstddef>

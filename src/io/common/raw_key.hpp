@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Keys as the readers give them (raw_key: numbers as written in the file,
 // in its units) and the one place where they become keyrot's keys

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/source.hpp"
 
 #include <fcntl.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The inputs of a command: files, a file on standard input, or anything
 // that can be read only once (a pipe, a FIFO, a device) copied to a

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/spool.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Bytes set aside in a temporary file, so that memory does not grow with
 // them: an output's data gathered before the header that must come first,

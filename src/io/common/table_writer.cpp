@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/table_writer.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The writers of the formats, row by row into a string: what open_table
 // (io/open.hpp) puts out, on formatting threads or not. Internal to io.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // CSV: a header naming the columns (any order, any case), one key per row.
 #include <istream>

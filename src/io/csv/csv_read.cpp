@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/csv/csv.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Keys parsed ahead of the caller on threads of their own.
 #include <functional>

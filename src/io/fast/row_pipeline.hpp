@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // How output rows get formatted, on other threads once there are many, and
 // written out: what open_table (io/open.hpp) puts a table through.

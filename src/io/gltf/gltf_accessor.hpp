@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A glTF 2.0 accessor's elements, decoded as the specification says: FLOAT
 // components as stored, normalised integers, byteStride, sparse substitution.

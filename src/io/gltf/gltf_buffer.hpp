@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // What both glTF writers share (the one that rewrites a glTF input, the one
 // that makes a new file): the output's buffer with its bufferViews and

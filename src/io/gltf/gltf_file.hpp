@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A glTF 2.0 file as it is stored: its JSON (from a .gltf, or a .glb's JSON
 // chunk), and its buffers (the .glb's BIN chunk, base64 data: URIs, files

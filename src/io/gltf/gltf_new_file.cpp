@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A new glTF file (of CSV, JSON or BVH) written as its rows come, in
 // memory that does not grow with the take (make_new_gltf_file).
 #include "io/gltf/gltf_write.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // glTF 2.0 animations as tracks: one track per animated node (and
 // animation), its rotation, translation, scale and morph weights channels

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/gltf/gltf_rows.hpp"
 
 #include <fmt/format.h>

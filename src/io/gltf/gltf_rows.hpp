@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A rewritten glTF file's tracks, gathered row by row as the file stores
 // them (gltf_write.cpp's rewritten table), and a track gathered apart from

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Which tracks a glTF 2.0 file's animations make: one per animated node
 // (and animation), merging its rotation, translation, scale and morph

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // glTF 2.0 output: the tracks' rows as animation samplers, in a new file
 // (a node per track) or in place of a glTF input's own samplers, everything

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // JSON parsed in place into one flat array, reused from parse to parse:
 // building nlohmann-json's map-based document took three quarters of the

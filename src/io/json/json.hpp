@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // JSON documents ({"keys": [...]}, {"frames": [...]}, {"tracks": {...}} or a
 // bare array of keys) and NDJSON (one key or frame object per line).

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Internal to the JSON readers (json_read.cpp, json_stream.cpp): the
 // fields of a key object and a document's own settings, read from a

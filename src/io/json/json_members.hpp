@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The members of a JSON or NDJSON key object, named once for the readers
 // (what they look for, and what is unknown), the writer and `keyrot help

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // The JSON that keyrot's reports write (info, compare, reduce --report
 // json): members in a fixed order, "name": value separated by ", ", and

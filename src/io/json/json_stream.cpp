@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A JSON document's keys as they arrive, block by block, for resample and
 // convert: a long track in a few keys' memory, as CSV and NDJSON are read.
 // Only documents laid out as keyrot and most tools write them are taken;

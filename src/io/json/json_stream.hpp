@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A JSON document's keys as they arrive, block by block.
 #include <istream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/json/json.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/svg/axis.hpp"
 
 #include <fmt/format.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // An axis's round numbers: ticks at 1, 2 or 5 times a power of ten.
 #include <algorithm>

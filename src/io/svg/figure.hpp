@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // Pictures: a figure of panels stacked one above the other, each a plot of
 // curves, marks and levels against one x axis, written as a standalone SVG

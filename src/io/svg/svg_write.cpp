@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The SVG of a figure: panels stacked top to bottom, each with its title,
 // legend, axes, grid, curves (thinned to their pixel columns), marks and
 // levels. Coordinates to a tenth of a pixel, so the same figure gives the

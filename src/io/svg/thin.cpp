@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/svg/thin.hpp"
 
 #include <algorithm>

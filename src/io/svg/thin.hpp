@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #pragma once
 // A polyline thinned to what its pixels show.
 #include <optional>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The BVH reader gives a take's keys joint after joint, and stops at the
 // first error; bvh_output takes them back track after track and writes a
 // line per frame; track_store holds the rows between.

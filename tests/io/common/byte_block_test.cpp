@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // byte_block: what is read in comes back whole and in order, read at once
 // or a piece at a time, small or past a huge page.
 #include "io/common/byte_block.hpp"

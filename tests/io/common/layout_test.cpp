@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/layout.hpp"
 
 #include <doctest/doctest.h>

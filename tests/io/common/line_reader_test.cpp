@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The line reader: lines split at '\n' whatever the chunk size, "\r\n"
 // and a byte-order mark dropped, put_back, and the --max-bytes limit.
 #include "io/common/line_reader.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Numbers as keyrot writes them: shortest round trip, or rounded as
 // --precision asks, digit for digit as fmt and printf.
 #include "io/common/number_writer.hpp"

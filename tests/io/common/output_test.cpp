@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Atomic output: a file is replaced whole on commit, or not at all.
 #include "io/common/output.hpp"
 

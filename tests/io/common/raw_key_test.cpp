@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/common/raw_key.hpp"
 
 #include <doctest/doctest.h>

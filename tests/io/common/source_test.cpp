@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Inputs: files read in place, standard input kept so that it can be read
 // twice, the format by flag, extension or content.
 #include "io/common/source.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // byte_spool: bytes set aside in a temporary file come back whole and in order.
 #include "io/common/spool.hpp"
 

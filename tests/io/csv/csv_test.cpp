@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reading CSV: columns, comments, quoting, the fast path for plain rows.
 #include "io/csv/csv.hpp"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Keys parsed ahead on other threads: the same keys and errors, in order.
 #include "io/fast/read_ahead.hpp"
 #include "io/open.hpp"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The row pipeline: batches formatted on other threads come out whole and
 // in order, however their formatting threads or the output are held up.
 #include "io/fast/row_pipeline.hpp"

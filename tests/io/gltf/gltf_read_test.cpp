@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The glTF reader on files made here byte by byte: the keys of a rotation
 // channel, accessors decoded as the glTF 2.0 specification says (normalised
 // integers, byteStride), .gltf and .glb alike, errors that name the JSON

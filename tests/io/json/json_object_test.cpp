@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "io/json/json_object.hpp"
 
 #include <doctest/doctest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reading JSON documents and NDJSON lines, whole and streamed.
 #include "io/json/json.hpp"
 #include "io/open.hpp"

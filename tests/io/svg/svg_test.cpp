@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The picture writer: round axis ticks, polylines thinned within half a
 // pixel with every extreme kept, and the SVG text itself.
 #include <doctest/doctest.h>
