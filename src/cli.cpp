@@ -162,7 +162,7 @@ std::vector<std::string> command_names() {
     return names;
 }
 
-/// The commands as a message lists them: "resample, convert, slerp, compare, info or reduce".
+/// The commands as a message lists them: "resample, convert, slerp, compare, info, reduce or plot".
 std::string listed_commands() {
     return spoken_list(command_names(), "or");
 }

@@ -2,7 +2,7 @@
 // resample, convert and reduce: an input streams in two passes (validate,
 // then make the rows as the keys arrive, by the command's row_source), or
 // in one into a file; interleaved tracks, and JSON documents the streaming
-// reader declines, are read whole; BVH to BVH goes frame by frame.
+// reader declines, are read whole; a BVH take is read a joint at a time.
 #include <fmt/format.h>
 
 #include <algorithm>

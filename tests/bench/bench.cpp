@@ -345,7 +345,7 @@ int main(int argc, char** argv) {
         if (with_scipy) commands.push_back({{python, script, track, dir + "/out_scipy.csv"}});
         // Each run above replaces the output of the run before, as the
         // script's does; freeing the old file's blocks can take the
-        // filesystem a tenth of keyrot's run (README, Performance).
+        // filesystem a tenth of keyrot's run (docs/performance.md).
         const bool also_new_file = &in == &inputs[0];
         const std::string new_out = dir + "/new_out.csv";
         if (also_new_file)
