@@ -44,21 +44,11 @@ except ImportError:  # pragma: no cover
     print("bvh_test: numpy/scipy not installed (apt-get install python3-scipy); skipped")
     sys.exit(77)
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import fail, ok, summary  # noqa: E402
+
 KEYROT = os.path.abspath(sys.argv[1])
 ORDERS = ["".join(p) for p in itertools.permutations("XYZ")]
-failures = []
-checks = 0
-
-
-def fail(msg):
-    failures.append(msg)
-    print("FAIL:", msg)
-
-
-def ok(msg):
-    global checks
-    checks += 1
-    print("ok:", msg)
 
 
 def run(args, stdin=None):
@@ -475,8 +465,7 @@ def main():
         check_rates(work)
         check_bad(work)
         check_memory(work)
-    print(f"bvh_test: {checks} checks, {len(failures)} failures")
-    return 1 if failures else 0
+    return summary("bvh_test")
 
 
 if __name__ == "__main__":

@@ -394,7 +394,6 @@ def run_case(keyrot, rng, case):
     key_fps = float(rng.choice([24, 30]))
     command = rng.choice(["resample", "resample", "resample", "convert"])
     n_tracks = int(rng.choice([1, 1, 2, 3]))
-    precision = None
 
     # Every 50th case has long tracks of dense keys (about 120 a second, more
     # than the frames): keyrot then parses ahead on a second thread.

@@ -46,18 +46,14 @@ except ImportError:  # pragma: no cover
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gltf_files as G  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import fail, passed, summary  # noqa: E402
+
 KEYROT = os.path.abspath(sys.argv[1])
 VALIDATOR = sys.argv[2] if len(sys.argv) > 2 else None
 FLOAT32_DEG = 2e-5  # a quaternion's components rounded to 32-bit floats
 ROT_TOL_DEG = 1e-9
 POS_TOL = 1e-9
-failures = []
-checks = 0
-
-
-def fail(msg):
-    failures.append(msg)
-    print("FAIL:", msg)
 
 
 def run(args, stdin=None, memory=None):
@@ -343,7 +339,6 @@ def expected_frames(track, fps):
 
 def check_resample(case, fps, extra=(), stdin=None, animation=None):
     """`animation`: the name of the one animation `extra` picks."""
-    global checks
     args = ["resample", "-" if stdin else case.path, "--to", "csv", "--rep", "quat", "--fps", str(fps)] + list(extra)
     status, out, err = run(args, stdin)
     label = f"{case.name} at {fps} fps {' '.join(extra)}{' (stdin)' if stdin else ''}"
@@ -376,7 +371,7 @@ def check_resample(case, fps, extra=(), stdin=None, animation=None):
                     fail(f"{label}: track {name} frame {k}: no {ch}")
                     break
                 worst_pos = max(worst_pos, float(np.max(np.abs(np.array([float(r[c]) for c in columns]) - p))))
-    checks += 1
+    passed()
     if worst_rot > ROT_TOL_DEG or worst_pos > POS_TOL:
         fail(f"{label}: largest difference {worst_rot:.3g} deg, {worst_pos:.3g} in translation or scale")
     else:
@@ -385,7 +380,6 @@ def check_resample(case, fps, extra=(), stdin=None, animation=None):
 
 def check_convert(case):
     """convert writes each channel's keys as stored (normalised rotations)."""
-    global checks
     status, out, err = run(["convert", case.path, "--to", "csv", "--rep", "quat"])
     if status != 0:
         fail(f"convert {case.name}: status {status}: {err.strip()}")
@@ -406,7 +400,7 @@ def check_convert(case):
             if np.max(np.abs(q - v / np.linalg.norm(v))) > 1e-15:
                 fail(f"convert {case.name}: track {name} at {t}: {q}, expected {v / np.linalg.norm(v)}")
                 return
-    checks += 1
+    passed()
     print(f"ok: convert {case.name}: keys as stored")
 
 
@@ -465,7 +459,6 @@ def compare_frames(label, expected_text, actual_text, tol_deg):
 
 def check_gltf_output(case, fps, how, written):
     """resample into .glb or .gltf: reads back as the CSV frames; the rest of the file kept; no dead bytes."""
-    global checks
     stem = os.path.splitext(case.path)[0]
     out = f"{stem}_{fps}.{how}"
     status, _, err = run(["resample", case.path, "--fps", str(fps), "-o", out])
@@ -519,7 +512,7 @@ def check_gltf_output(case, fps, how, written):
     if not compare_frames(f"{again} (from {out} at its own rate)", back, again_csv, FLOAT32_DEG):
         return
     written.append(again)
-    checks += 1
+    passed()
     print(f"ok: {out}: reads back as the frames, the rest of the file kept, {len(bin_out)} bytes of buffer")
 
 
@@ -533,7 +526,6 @@ def keys_per_channel(doc, node_key):
 def check_rig_layout(case, written):
     """resample of a rig into .glb: one time accessor for all channels on one set of times, a
     channel that never changes written as one key; and convert reads such a key on every row."""
-    global checks
     out = f"{os.path.splitext(case.path)[0]}_30.glb"  # (check_gltf_output wrote it)
     if out not in written:
         return
@@ -556,14 +548,13 @@ def check_rig_layout(case, written):
                 (r["sx"], r["sy"], r["sz"]) != ("1", "2", "3") for r in rows if r["track"] == "joint4"):
             fail(f"convert {read}: a translation or scale missing from a row, or not the one key's: {err.strip()}")
             return
-    checks += 1
+    passed()
     print(f"ok: {out}: one time accessor for the frames, still channels as one key, read on every row")
 
 
 def check_new_file_still_channels(work, written):
     """A new file of CSV tracks: a translation or scale that never changes is one key, read back on
     every row; tracks on the same times share their time accessor."""
-    global checks
     source, out = os.path.join(work, "still.csv"), os.path.join(work, "still.glb")
     with open(source, "w") as f:
         f.write("track,time,qw,qx,qy,qz,tx,ty,tz,sx,sy,sz\n")
@@ -587,13 +578,12 @@ def check_new_file_still_channels(work, written):
     if counts != want or len(inputs) != 2 or not compare_frames(f"{out} read back", direct, back, FLOAT32_DEG):
         fail(f"{out}: keys per channel {counts}, expected {want}; {len(inputs)} time accessors, expected 2")
         return
-    checks += 1
+    passed()
     print(f"ok: {out}: still channels as one key, one time accessor, read back on every row")
 
 
 def check_new_files(work, written):
     """Tracks from CSV and JSON into a new glTF file: a node per track, frames as in CSV."""
-    global checks
     data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
     for name in sorted(os.listdir(data)):
         if not name.endswith((".csv", ".json", ".bvh")):
@@ -613,7 +603,7 @@ def check_new_files(work, written):
                 direct = "\n".join(line if line.startswith(("#", "track")) or not line else "track," + line
                                    for line in direct.split("\n"))
             if compare_frames(f"{out} read back", direct, back, FLOAT32_DEG):
-                checks += 1
+                passed()
                 print(f"ok: {out}: reads back as the frames")
     # On standard output: a .gltf with its buffer as a data: URI.
     out = os.path.join(work, "stdout.gltf")
@@ -624,12 +614,11 @@ def check_new_files(work, written):
         fail(f"--to gltf on standard output: status {status}, {err.strip()}")
     else:
         written.append(out)
-        checks += 1
+        passed()
 
 
 def check_cubic_kept(case, work, written):
     """convert from glTF to glTF keeps CUBICSPLINE samplers, values and tangents to the bit."""
-    global checks
     out = os.path.join(work, "cubic_converted.glb")
     status, _, err = run(["convert", case.path, "-o", out])
     if status != 0:
@@ -646,12 +635,11 @@ def check_cubic_kept(case, work, written):
                 for e in ("input", "output")):
             fail(f"{out}: channel {c_in['target']} not kept as CUBICSPLINE to the bit")
             return
-    checks += 1
+    passed()
     print(f"ok: {out}: CUBICSPLINE samplers kept to the bit")
 
 
 def check_step_output(case, work, written):
-    global checks
     out = os.path.join(work, "stepped.glb")
     status, _, err = run(["resample", case.path, "--method", "step", "-o", out])
     doc, _ = G.parts(out) if status == 0 else ({}, b"")
@@ -660,7 +648,7 @@ def check_step_output(case, work, written):
         fail(f"{out}: --method step: expected STEP samplers ({err.strip()})")
         return
     written.append(out)
-    checks += 1
+    passed()
 
 
 COMPACT_DEG = 0.0035  # 2 asin(2 * 0.5 / 32767) in degrees, with room for the float times
@@ -709,7 +697,6 @@ def check_compact(cases, work, written):
     nearest the exact quaternion in angle, kept by another convert --compact; translations, scales
     and CUBICSPLINE samplers as before; every row within COMPACT_DEG of exact, which compare
     checks; other outputs refuse the flag."""
-    global checks
     data = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
     rig = next(c for c in cases if c.name == "rig.glb")
     jobs = [(os.path.join(data, "walk.csv"), "walk_compact.glb", ["resample"]),
@@ -762,7 +749,7 @@ def check_compact(cases, work, written):
             fail(f"{out}: compare --tol {COMPACT_DEG} exit {status} (expected 0), --tol 0.0005 exit {tight} "
                  f"(expected 1: the integers are coarser)")
             continue
-        checks += 1
+        passed()
         print(f"ok: {out}: {len(stored)} rotation channels as normalised SHORTs, within {COMPACT_DEG} deg")
     for target in ("x.csv", "x.bvh"):
         out = os.path.join(work, target)
@@ -770,11 +757,10 @@ def check_compact(cases, work, written):
         if status != 2 or text or len(err.splitlines()) != 1 or "--compact" not in err or os.path.exists(out):
             fail(f"--compact -o {target}: status {status}, {err.strip()!r}: expected one line, exit 2, no file")
         else:
-            checks += 1
+            passed()
 
 
 def validate(files):
-    global checks
     if not VALIDATOR:
         print(f"gltf_test: the glTF Validator is not installed (.ci/deps test): {len(files)} outputs not validated")
         return
@@ -782,7 +768,7 @@ def validate(files):
     if bad:
         fail("glTF Validator: " + "; ".join(bad[:10]))
     else:
-        checks += 1
+        passed()
         print(f"ok: glTF Validator: {len(files)} outputs, no errors, no warnings")
 
 
@@ -790,7 +776,6 @@ def validate(files):
 def check_tracks_apart_say(work):
     """Tracks made apart (a large file into glTF) say what the same keys say read in order: a
     warning once, and of two bad keys the first in the file's order, with nothing written."""
-    global checks
     rng = np.random.default_rng(7)
     t = np.arange(200) / 30
 
@@ -832,7 +817,7 @@ def check_tracks_apart_say(work):
                 FLOAT32_DEG)):
             fail(f"{name} into .glb: {err.strip()!r}, expected one warning, or frames not the CSV's")
         else:
-            checks += 1
+            passed()
             print(f"ok: {name} into .glb says what it says into .csv: {err.strip()}")
 
 
@@ -956,14 +941,13 @@ def bad_cases(work):
 
 
 def check_bad(work):
-    global checks
     # A .gltf and its .bin go in place together, or neither does.
     bad_pair = os.path.join(work, "pair.gltf")
     status, _, _ = run(["resample", "-", "--from", "glb", "-o", bad_pair], stdin=b"glTx")
     if status != 2 or os.path.exists(bad_pair) or os.path.exists(os.path.join(work, "pair.bin")):
         fail(f"a bad input into {bad_pair}: status {status}, or a file written")
     else:
-        checks += 1
+        passed()
     # A translation a 32-bit float cannot hold, into glTF.
     big = os.path.join(work, "big.csv")
     with open(big, "w") as f:
@@ -973,7 +957,7 @@ def check_bad(work):
             or os.path.exists(os.path.join(work, "big.glb")):
         fail(f"big.csv into glTF: status {status}, {err.strip()!r}")
     else:
-        checks += 1
+        passed()
     # In 1 GiB of address space, a bad file (even one naming /dev/zero) ends in its
     # error, never in all the memory. AddressSanitizer cannot start in 1 GiB: a
     # sanitizer build goes without the cap.
@@ -990,7 +974,7 @@ def check_bad(work):
             if os.path.exists(target):
                 os.remove(target)
         else:
-            checks += 1
+            passed()
             print(f"ok: bad {name}: {err.strip()}")
 
 
@@ -998,7 +982,6 @@ def check_unstored(work):
     """Accessors with no bufferView (zeros but for sparse substitutes) that
     are valid read as their stored twins: key times 0, 0.5, 1 given as two
     substitutes over a zero, and rotations given wholly as substitutes."""
-    global checks
     stored = os.path.join(work, "stored_twin.glb")
     small_glb(stored, 2, 2)
     doc, binary = G.parts(stored)
@@ -1031,7 +1014,7 @@ def check_unstored(work):
     if outputs[0][0] != 0 or outputs[1] != outputs[0]:
         fail(f"unstored accessors: {outputs[1]!r}, expected as {stored}: {outputs[0]!r}")
     else:
-        checks += 1
+        passed()
 
 
 def main():
@@ -1063,8 +1046,7 @@ def main():
         validate(written)
         check_bad(work)
         check_unstored(work)
-    print(f"gltf_test: {checks} checks, {len(failures)} failures")
-    return 1 if failures else 0
+    return summary("gltf_test")
 
 
 if __name__ == "__main__":

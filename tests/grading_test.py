@@ -34,14 +34,10 @@ import tempfile
 
 from peak import peak_kb
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import check, summary  # noqa: E402
+
 KEYROT = os.path.abspath(sys.argv[1])
-failures = 0
-
-
-def check(ok, what):
-    global failures
-    print(("ok   " if ok else "FAIL ") + what)
-    failures += not ok
 
 
 def keyrot(*args, cwd):
@@ -314,5 +310,4 @@ with tempfile.TemporaryDirectory() as d:
                                                          "track knee frame 150"),
               f"compare {key} {answer}: {r.stdout.strip()}")
 
-print("all grading checks passed" if not failures else f"{failures} grading checks failed")
-sys.exit(1 if failures else 0)
+sys.exit(summary("grading_test"))

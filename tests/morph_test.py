@@ -45,23 +45,13 @@ except ImportError:  # pragma: no cover
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gltf_files as G  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import fail, ok, summary  # noqa: E402
+
 KEYROT = os.path.abspath(sys.argv[1])
 VALIDATOR = sys.argv[2] if len(sys.argv) > 2 else None
 TOL = 1e-9
 FLOAT32 = 1e-6  # weights of about 1 rounded to 32-bit floats
-failures = []
-checks = 0
-
-
-def fail(msg):
-    failures.append(msg)
-    print("FAIL:", msg)
-
-
-def ok(msg):
-    global checks
-    checks += 1
-    print("ok:", msg)
 
 
 def run(args, stdin=None):
@@ -414,8 +404,7 @@ def main():
         if csv_path:
             check_reduce(work, csv_path)
         check_bad(work)
-    print(f"morph_test: {checks} checks, {len(failures)} failures")
-    return 1 if failures else 0
+    return summary("morph_test")
 
 
 if __name__ == "__main__":

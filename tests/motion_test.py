@@ -41,15 +41,11 @@ except ImportError:  # pragma: no cover
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gltf_files as G  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import check, summary  # noqa: E402
+
 KEYROT = os.path.abspath(sys.argv[1])
 DATA = os.path.abspath(sys.argv[2])
-failures = []
-
-
-def check(ok, what):
-    if not ok:
-        failures.append(what)
-        print("FAIL:", what)
 
 
 def run(*args, stdin=None):
@@ -440,7 +436,4 @@ with tempfile.TemporaryDirectory() as tmp:
     out = os.path.join(tmp, "x.csv")
     bad(["resample", "-", "--from", "csv", "--method", "cubic", "-o", out], unsettled, "do not settle", out)
 
-if failures:
-    print(f"motion_test: {len(failures)} failures")
-    sys.exit(1)
-print("motion_test: all passed")
+sys.exit(summary("motion_test"))

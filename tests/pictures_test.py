@@ -36,6 +36,9 @@ except ImportError:
     print("pictures_test: python3-pil is missing (bash .ci/deps test installs it)")
     sys.exit(1)
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import check, summary  # noqa: E402
+
 KEYROT = os.path.abspath(sys.argv[1])
 DATA = os.path.abspath(sys.argv[2])
 PICTURES = os.path.abspath(sys.argv[3])
@@ -46,26 +49,6 @@ NS = "{http://www.w3.org/2000/svg}"
 # order), the speed, the tolerance line, failing rows.
 BLUE, VERMILLION, GREEN, PURPLE = (0x00, 0x72, 0xB2), (0xD5, 0x5E, 0x00), (0x00, 0x9E, 0x73), (0xCC, 0x79, 0xA7)
 ORANGE, GREY = (0xE6, 0x9F, 0x00), (0x76, 0x76, 0x76)
-checks, failures = 0, []
-
-
-def ok(message):
-    global checks
-    checks += 1
-    print("ok   " + message)
-
-
-def fail(message):
-    global checks
-    checks += 1
-    failures.append(message)
-    print("FAIL " + message)
-
-
-def check(condition, message):
-    (ok if condition else fail)(message)
-
-
 def keyrot(*args, stdin=None):
     p = subprocess.run([KEYROT, *args], input=stdin, capture_output=True, text=True)
     return p.returncode, p.stdout, p.stderr
@@ -379,5 +362,4 @@ for name, args in readme.items():
     check(fresh == current, f"docs/pictures/{name} is what keyrot draws (else: pictures_test.py ... --update)")
 
 shutil.rmtree(work)
-print(f"{checks - len(failures)} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+sys.exit(summary("pictures_test"))

@@ -44,22 +44,11 @@ except ImportError:  # pragma: no cover
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import gltf_files  # noqa: E402
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import fail, ok, summary  # noqa: E402
+
 KEYROT = os.path.abspath(sys.argv[1])
 VALIDATOR = sys.argv[2] if len(sys.argv) > 2 else None
-checks, failures = 0, []
-
-
-def ok(message):
-    global checks
-    checks += 1
-    print("ok: " + message)
-
-
-def fail(message):
-    global checks
-    checks += 1
-    failures.append(message)
-    print("FAIL: " + message)
 
 
 def run(args, stdin=None):
@@ -362,8 +351,7 @@ def main():
         check_found_again(work, rng)
         check_bad(work)
         check_gltf(work, rng)
-    print(f"reduce_test: {checks} checks, {len(failures)} failures")
-    return 1 if failures else 0
+    return summary("reduce_test")
 
 
 if __name__ == "__main__":

@@ -37,7 +37,8 @@ import subprocess
 import sys
 import tempfile
 
-from tally import check, summary
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import check, summary  # noqa: E402
 
 try:
     import numpy as np

@@ -12,6 +12,9 @@ import os
 import re
 import sys
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from tally import check, summary  # noqa: E402
+
 SECTION = ".text.startup_path"
 # Functions every run executes, which the layout must hold (CLI11's App,
 # the CSV row and cell splitter: names link-time optimisation has changed
@@ -26,12 +29,6 @@ EVERY_RUN_SECTIONS = (".text._ZN6keyrot12_GLOBAL__N_110csv_writer3row",
 # leave more of it unmatched than this.
 MOST_UNMATCHED = 0.1
 
-failures = []
-
-
-def check(ok, what):
-    if not ok:
-        failures.append(what)
 
 
 def main():
@@ -74,10 +71,8 @@ def main():
               f"{name} is not in {SECTION}")
     for name in EVERY_RUN_SECTIONS:
         check(re.search(r"^ " + re.escape(name), text, re.M) is not None, f"{name}* is not in {SECTION}")
-    for f in failures:
-        print("FAIL:", f)
     print(f"{len(patterns) - len(unmatched)} of {len(patterns)} sections listed laid out together, {size} bytes")
-    sys.exit(1 if failures else 0)
+    sys.exit(summary("startup_layout_test"))
 
 
 if __name__ == "__main__":
