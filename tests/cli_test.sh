@@ -53,6 +53,21 @@ expect "stdin json" 0 '{"fps": 1, "method": "slerp", "rep": "rotvec", "angles": 
 {"frame": 1, "time": 1, "rotvec": [0, 0, 1.5708]}]}' -- \
     bash -c "'$keyrot' resample --fps 1 --rep rotvec --radians --precision 4 < '$data/homework.json'"
 
+# A track whose lone key is off the frame grid has no frame: the JSON
+# document leaves it out as CSV does, and reads back (found by fuzz_formats)
+printf 'track,time,qw,qx,qy,qz\na,0,1,0,0,0\na,1,0,1,0,0\nb,0.081,1,0,0,0\n' > "$work/lone.csv"
+expect "lone key off the grid, json" 0 '{"fps": 2, "method": "slerp", "rep": "quat", "angles": "degrees", "quat_order": "wxyz", "tracks": {
+"a": {"frames": [
+{"frame": 0, "time": 0, "quat": [1, 0, 0, 0]},
+{"frame": 1, "time": 0.5, "quat": [0.7071, 0.7071, 0, 0]},
+{"frame": 2, "time": 1, "quat": [0, 1, 0, 0]}]}}}' -- \
+    "$keyrot" resample "$work/lone.csv" --fps 2 --rep quat --precision 4 --to json
+expect "lone key off the grid, json read back" 0 "track,frame,time,qw,qx,qy,qz
+a,0,0,1,0,0,0
+a,1,0.5,0.7071,0.7071,0,0
+a,2,1,0,1,0,0" -- bash -c "'$keyrot' resample '$work/lone.csv' --fps 2 --rep quat --precision 4 --to json |
+    '$keyrot' convert --from json --to csv --rep quat --precision 4"
+
 # Errors: one line, status 2, nothing on stdout
 printf 'time,qw,qx,qy,qz\n0,1,0,0,0\n0.5,abc,0,0,0\n' > "$work/bad.csv"
 expect_error "bad number" "keyrot: $work/bad.csv:3: column 'qw': expected a finite number, got 'abc'" -- \

@@ -41,16 +41,14 @@ public:
     void begin_track(const std::string& name, channels carried) override {
         name_ = json_quote(name);
         translation_ = carried.translation && opts_.representation != rep::matrix4;
-        if (lines_) return;
-        if (tracks_++) out_ += "]}";
-        if (info_.named) fmt::format_to(std::back_inserter(out_), "{}\n{}: {{", tracks_ > 1 ? "," : "", name_);
-        else out_ += ", ";
-        fmt::format_to(std::back_inserter(out_), "\"{}\": [", info_.rows_name);
         rows_ = 0;
     }
 
     void row(const table_row& s) override {
-        if (!lines_) out_ += rows_++ ? ",\n" : "\n";
+        if (!lines_) {
+            if (rows_++) out_ += ",\n";
+            else open_track();
+        }
         row_text text(out_);
         text.put('{');
         if (lines_ && info_.named) text.put("\"track\": "), text.put(name_), text.put(", ");
@@ -85,6 +83,16 @@ public:
     }
 
 private:
+    /// A document's track opens at its first row: a track of no rows (a
+    /// lone key off the frame grid) is left out, as CSV leaves it, not
+    /// written as an empty list that reads back as no keys.
+    void open_track() {
+        if (tracks_++) out_ += "]}";
+        if (info_.named) fmt::format_to(std::back_inserter(out_), "{}\n{}: {{", tracks_ > 1 ? "," : "", name_);
+        else out_ += ", ";
+        fmt::format_to(std::back_inserter(out_), "\"{}\": [\n", info_.rows_name);
+    }
+
     void array(row_text& text, std::initializer_list<double> v) { array(text, std::data(v), v.size()); }
     void array(row_text& text, const double* v, std::size_t n) {
         text.put('[');
