@@ -6,12 +6,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
-#include <iostream>
-#include <sstream>
+#include <optional>
 
 #include "app/app.hpp"
-#include "check.hpp"
-#include "standard_input.hpp"
+#include "command.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace keyrot;
@@ -35,16 +33,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.precision = (pick & 0x08u) ? std::optional<int>(3) : std::nullopt;
     o.tol_deg = (pick & 0x08u) ? 0 : 0.5;  // reduce: exact keys only, or many dropped
     o.max_frames = 1e5;  // keeps each run short; the limit itself is tested elsewhere
-    fuzz::set_standard_input(reinterpret_cast<const char*>(data) + 1, size - 1);
-    std::ostringstream out, err;
-    int status = 2;
-    try {
-        status = run(o, std::cin, out, err);
-    } catch (const usage_error&) {
-    }
-    fuzz::check_output(err.str());
+    const auto r = fuzz::run_command(o, fuzz::text(data + 1, size - 1));
     // A picture is a whole SVG document, or nothing.
     if (o.cmd == command::plot)
-        fuzz::require(status == 0 ? out.str().starts_with("<?xml") && out.str().ends_with("</svg>\n") : out.str().empty());
+        fuzz::require(r.status == 0 ? r.out.starts_with("<?xml") && r.out.ends_with("</svg>\n") : r.out.empty());
     return 0;
 }

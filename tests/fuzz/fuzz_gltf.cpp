@@ -6,12 +6,9 @@
 // finding.
 #include <cstddef>
 #include <cstdint>
-#include <iostream>
-#include <sstream>
 
 #include "app/app.hpp"
-#include "check.hpp"
-#include "standard_input.hpp"
+#include "command.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     using namespace keyrot;
@@ -21,24 +18,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     o.from = data[0] & 2u ? format::glb : format::gltf;
     o.to = format::glb;
     o.max_frames = 1e5;  // keeps each run short
-    fuzz::set_standard_input(reinterpret_cast<const char*>(data) + 1, size - 1);
-    std::ostringstream out, err;
-    int status = 2;
-    try {
-        status = run(o, std::cin, out, err);
-    } catch (const usage_error&) {
-    }
-    fuzz::check_output(err.str());
-    if (status != 0) return 0;
+    const auto r = fuzz::run_command(o, fuzz::text(data + 1, size - 1));
+    if (r.status != 0) return 0;
     // The output reads back.
-    const std::string written = out.str();
-    fuzz::set_standard_input(written.data(), written.size());
     options back;
     back.cmd = command::convert;
     back.from = format::glb;
     back.to = format::csv;
-    std::ostringstream csv, back_err;
-    fuzz::require(run(back, std::cin, csv, back_err) == 0);
-    fuzz::check_output(back_err.str());
+    fuzz::require(fuzz::run_command(back, r.out).status == 0);
     return 0;
 }
