@@ -276,7 +276,6 @@ std::string info_json(const described_file& file, bool segments, const bvh_sourc
 int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream& err) {
     const bool as_json = o.to == format::json || (o.output && format_of_path(*o.output) == format::json);
     std::string text;
-    int status = 0;
     const std::vector<std::string> inputs = input_names(o);
     std::size_t failed = 0;
     for (const std::string& name : inputs) {
@@ -290,13 +289,12 @@ int run_info(const options& o, std::istream& in, std::ostream& out, std::ostream
             throw;
         } catch (const error& e) {
             print_error(err, e.what());
-            status = 2;
             ++failed;
         }
     }
-    if (failed && inputs.size() > 1) print_error(err, fmt::format("{} of {} files failed", failed, inputs.size()));
+    if (inputs.size() > 1) say_failed_files(err, failed, inputs.size());
     emit(o, text, out);
-    return status;
+    return failed ? 2 : 0;
 }
 
 }  // namespace keyrot::detail

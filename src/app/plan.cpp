@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include "app/usage_error.hpp"
+#include "ground/warnings.hpp"
 #include "io/common/output.hpp"
 
 namespace keyrot::detail {
@@ -11,6 +12,10 @@ namespace keyrot::detail {
 std::vector<std::string> input_names(const options& o) {
     if (o.inputs.empty()) return {std::string(standard_stream)};
     return o.inputs;
+}
+
+void say_failed_files(std::ostream& err, std::size_t failed, std::size_t files) {
+    if (failed) print_error(err, fmt::format("{} of {} files failed", failed, files));
 }
 
 std::optional<std::string> output_path(const options& o) {

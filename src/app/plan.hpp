@@ -2,6 +2,7 @@
 #pragma once
 // What the commands make of the options before they read: the settings of
 // reading, sampling and writing, and where inputs and output are.
+#include <cstddef>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -18,6 +19,9 @@ namespace keyrot::detail {
 
 /// The inputs named, standard input ("-") when none is.
 std::vector<std::string> input_names(const options& o);
+/// A batch's closing line, where `failed` of its `files` failed: "keyrot:
+/// 3 of 53 files failed"; nothing where none did.
+void say_failed_files(std::ostream& err, std::size_t failed, std::size_t files);
 /// The file -o names; none for standard output (no -o, or -o -).
 std::optional<std::string> output_path(const options& o);
 

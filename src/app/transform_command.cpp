@@ -374,7 +374,7 @@ int transform_batch(const options& o, const std::vector<std::string>& inputs, st
         status = std::max(status, statuses[i]);
         failed += statuses[i] != 0;
     }
-    if (failed) print_error(err, fmt::format("{} of {} files failed", failed, inputs.size()));
+    say_failed_files(err, failed, inputs.size());
     if (batch) {
         try {
             batch->finish();
